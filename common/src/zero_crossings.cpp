@@ -1,0 +1,238 @@
+#include "reliefkit/zero_crossings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace reliefkit {
+namespace {
+
+// Minimal rotation taking the plane with normal `from` to the plane with normal `to`, applied to v.
+Vec3 rotate_between(const Vec3& v, const Vec3& from, const Vec3& to) {
+  double ndot = from.dot(to);
+  if (ndot <= -1.0 + 1e-12) return -v;
+  Vec3 perp_old = to - ndot * from;
+  Vec3 dperp = (from + to) / (1.0 + ndot);
+  return v - dperp * perp_old.dot(v);
+}
+
+struct Crossing {
+  uint64_t key;  // undirected edge
+  Vec3 p;
+  double s;
+  int slot;      // index of the owning segment * 2 + end
+};
+
+}  // namespace
+
+double Polylines::total_length() const {
+  double L = 0;
+  for (const auto& s : segments) L += (points[s[0]] - points[s[1]]).norm();
+  return L;
+}
+
+std::vector<std::vector<int>> Polylines::chains() const {
+  const int np = static_cast<int>(points.size());
+  std::vector<int> deg(np, 0);
+  for (const auto& s : segments) {
+    ++deg[s[0]];
+    ++deg[s[1]];
+  }
+  std::vector<int> off(np + 1, 0);
+  for (int i = 0; i < np; ++i) off[i + 1] = off[i] + deg[i];
+  std::vector<int> adj(off[np]), fill(off.begin(), off.end() - 1);
+  for (int k = 0; k < (int)segments.size(); ++k) {
+    adj[fill[segments[k][0]]++] = k;
+    adj[fill[segments[k][1]]++] = k;
+  }
+  std::vector<char> used(segments.size(), 0);
+  std::vector<std::vector<int>> out;
+  auto walk = [&](int start, int seg) {
+    std::vector<int> chain{start};
+    int cur = start;
+    while (seg >= 0 && !used[seg]) {
+      used[seg] = 1;
+      int nxt = segments[seg][0] == cur ? segments[seg][1] : segments[seg][0];
+      chain.push_back(nxt);
+      cur = nxt;
+      seg = -1;
+      if (deg[cur] == 2)
+        for (int k = off[cur]; k < off[cur + 1]; ++k)
+          if (!used[adj[k]]) seg = adj[k];
+    }
+    out.push_back(std::move(chain));
+  };
+  for (int p = 0; p < np; ++p)  // open chains start at ends and branch points
+    if (deg[p] != 2)
+      for (int k = off[p]; k < off[p + 1]; ++k)
+        if (!used[adj[k]]) walk(p, adj[k]);
+  for (int k = 0; k < (int)segments.size(); ++k)  // what is left are closed loops
+    if (!used[k]) walk(segments[k][0], k);
+  return out;
+}
+
+Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& normals,
+                                 const DirectionalField& field, const ZeroCrossingOptions& opt) {
+  const int nv = mesh.n_vertices(), nf = mesh.n_faces();
+  if ((int)normals.size() != nv || (int)field.direction.size() != nv || (int)field.value.size() != nv ||
+      (!field.strength.empty() && (int)field.strength.size() != nv) || !field.value_along)
+    throw InputError("zero-crossing extraction: per-vertex fields do not match the mesh");
+  const double cos_max = std::cos(opt.max_angle);
+  const bool has_strength = !field.strength.empty();
+
+  int nthreads = 1;
+#ifdef _OPENMP
+  nthreads = omp_get_max_threads();
+#endif
+  std::vector<std::vector<Crossing>> per_thread(nthreads);
+  std::vector<std::vector<int>> seg_faces(nthreads);
+  long long rejected = 0;
+
+#pragma omp parallel reduction(+ : rejected)
+  {
+    int tid = 0;
+#ifdef _OPENMP
+    tid = omp_get_thread_num();
+#endif
+    auto& out = per_thread[tid];
+    auto& sf = seg_faces[tid];
+#pragma omp for schedule(static)
+    for (int fi = 0; fi < nf; ++fi) {
+      const auto& f = mesh.faces[fi];
+      if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) continue;
+      Vec3 t[3];
+      double val[3], str[3];
+      for (int j = 0; j < 3; ++j) {
+        t[j] = field.direction[f[j]];
+        val[j] = field.value[f[j]];
+        str[j] = has_strength ? field.strength[f[j]] : 0.0;
+      }
+      if (field.axial)
+        for (int j = 1; j < 3; ++j)
+          if (t[j].dot(t[0]) < 0) {
+            t[j] = -t[j];
+            val[j] = field.value_along(f[j], t[j]);
+            if (has_strength && field.strength_along) str[j] = field.strength_along(f[j], t[j]);
+          }
+      // Direction consistency (thesis 3.3.2).
+      double c01 = t[0].dot(t[1]), c12 = t[1].dot(t[2]), c20 = t[2].dot(t[0]);
+      bool a01 = c01 >= cos_max, a12 = c12 >= cos_max, a20 = c20 >= cos_max;
+      if (!(a01 && a12 && a20)) {
+        int odd = -1;  // the vertex re-evaluated in the mean direction of the other two
+        double best = -2;
+        if (a01 && c01 > best) best = c01, odd = 2;
+        if (a12 && c12 > best) best = c12, odd = 0;
+        if (a20 && c20 > best) best = c20, odd = 1;
+        if (odd < 0) {
+          ++rejected;
+          continue;
+        }
+        int i1 = (odd + 1) % 3, i2 = (odd + 2) % 3;
+        Vec3 mean = t[i1] + t[i2];
+        Vec3 mean_n = normals[f[i1]] + normals[f[i2]];
+        double ml = mean_n.norm();
+        if (!(mean.norm() > 0) || !(ml > 0)) {
+          ++rejected;
+          continue;
+        }
+        Vec3 d = rotate_between(mean.normalized(), mean_n / ml, normals[f[odd]]);
+        val[odd] = field.value_along(f[odd], d);
+        if (has_strength && field.strength_along) str[odd] = field.strength_along(f[odd], d);
+      }
+      int found = 0;
+      Crossing cr[2];
+      for (int j = 0; j < 3; ++j) {
+        int p = (j + 1) % 3, q = (j + 2) % 3;
+        bool sp = val[p] >= 0, sq = val[q] >= 0;
+        if (sp == sq) continue;
+        if (!std::isfinite(val[p]) || !std::isfinite(val[q])) {
+          found = -1;
+          break;
+        }
+        double w = val[p] / (val[p] - val[q]);  // 0 at p, 1 at q
+        uint32_t a = f[p], b = f[q];
+        if (a > b) std::swap(a, b), w = 1 - w, std::swap(p, q);
+        Crossing& c = cr[found < 2 ? found : 1];
+        c.key = (uint64_t(a) << 32) | b;
+        c.p = (1 - w) * mesh.vertices[f[p]] + w * mesh.vertices[f[q]];
+        c.s = (1 - w) * str[p] + w * str[q];
+        ++found;
+      }
+      if (found != 2) continue;
+      if (0.5 * (cr[0].s + cr[1].s) < opt.min_strength) continue;
+      int seg = static_cast<int>(sf.size());
+      cr[0].slot = seg * 2;
+      cr[1].slot = seg * 2 + 1;
+      out.push_back(cr[0]);
+      out.push_back(cr[1]);
+      sf.push_back(fi);
+    }
+  }
+
+  // Concatenate per-thread results (deterministic order) and merge points on shared edges.
+  Polylines res;
+  res.rejected_faces = rejected;
+  std::vector<Crossing> all;
+  size_t total = 0;
+  for (auto& v : per_thread) total += v.size();
+  all.reserve(total);
+  int seg_base = 0;
+  for (int t = 0; t < nthreads; ++t) {
+    for (auto c : per_thread[t]) {
+      c.slot += 2 * seg_base;
+      all.push_back(c);
+    }
+    res.segment_face.insert(res.segment_face.end(), seg_faces[t].begin(), seg_faces[t].end());
+    seg_base += static_cast<int>(seg_faces[t].size());
+  }
+  res.segments.assign(seg_base, {0, 0});
+  std::sort(all.begin(), all.end(), [](const Crossing& x, const Crossing& y) {
+    return x.key != y.key ? x.key < y.key : x.slot < y.slot;
+  });
+  for (size_t i = 0; i < all.size();) {
+    size_t j = i;
+    Vec3 p = Vec3::Zero();
+    double s = 0;
+    while (j < all.size() && all[j].key == all[i].key) p += all[j].p, s += all[j].s, ++j;
+    int id = static_cast<int>(res.points.size());
+    res.points.push_back(p / double(j - i));
+    res.strength.push_back(s / double(j - i));
+    for (size_t k = i; k < j; ++k) res.segments[all[k].slot / 2][all[k].slot % 2] = id;
+    i = j;
+  }
+  return res;
+}
+
+Polylines drop_short_chains(const Polylines& in, double min_length) {
+  if (!(min_length > 0)) return in;
+  std::vector<char> keep_point(in.points.size(), 0);
+  for (const auto& ch : in.chains()) {
+    double L = 0;
+    for (size_t k = 1; k < ch.size(); ++k) L += (in.points[ch[k]] - in.points[ch[k - 1]]).norm();
+    if (L >= min_length)
+      for (int p : ch) keep_point[p] = 1;
+  }
+  Polylines out;
+  out.rejected_faces = in.rejected_faces;
+  std::vector<int> remap(in.points.size(), -1);
+  for (size_t p = 0; p < in.points.size(); ++p)
+    if (keep_point[p]) {
+      remap[p] = static_cast<int>(out.points.size());
+      out.points.push_back(in.points[p]);
+      out.strength.push_back(in.strength[p]);
+    }
+  for (size_t k = 0; k < in.segments.size(); ++k) {
+    int a = remap[in.segments[k][0]], b = remap[in.segments[k][1]];
+    if (a >= 0 && b >= 0) {
+      out.segments.push_back({a, b});
+      out.segment_face.push_back(in.segment_face[k]);
+    }
+  }
+  return out;
+}
+
+}  // namespace reliefkit
