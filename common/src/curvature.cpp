@@ -173,14 +173,6 @@ inline void diagonalize(const Vec3& u, const Vec3& w, const Vec3& n, double ku, 
   d2 = n.cross(d1);
 }
 
-void smooth_normals(const TriMesh& mesh, const VertexRing& ring, double scale, std::vector<Vec3>& normals) {
-  diffuse(mesh, ring, scale, normals);
-  for (auto& n : normals) {
-    double l = n.norm();
-    n = l > 0 ? Vec3(n / l) : Vec3(0, 0, 1);
-  }
-}
-
 inline Vec3 any_tangent(const Vec3& n) {
   Vec3 u = std::abs(n.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
   return (u - n * n.dot(u)).normalized();
@@ -265,12 +257,6 @@ static Curvature compute_curvature_jets(const TriMesh& mesh, const CurvatureOpti
   out.normal = std::move(normals);
   report(opt.progress, 20, "Vertex neighbourhoods");
   VertexRing ring = vertex_rings(mesh, vf);
-  if (opt.smoothing_scale > 0) {
-    report(opt.progress, 25, "Pre-smoothing");
-    // Smoothing the positions would shrink the relief; the jet is fitted to the original
-    // positions and only its reference normal is smoothed.
-    smooth_normals(mesh, ring, opt.smoothing_scale, out.normal);
-  }
   auto ca = corner_areas(mesh);
   out.point_area.assign(nv, 0);
   for (size_t f = 0; f < mesh.faces.size(); ++f)
@@ -311,10 +297,20 @@ static Curvature compute_curvature_jets(const TriMesh& mesh, const CurvatureOpti
   return out;
 }
 
-Curvature compute_curvature(const TriMesh& mesh, const CurvatureOptions& opt) {
-  require_triangles(mesh, "Curvature estimation");
+Curvature compute_curvature(const TriMesh& input, const CurvatureOptions& opt) {
+  require_triangles(input);
   report(opt.progress, 0, "Vertex adjacency");
-  VertexFaces vf = vertex_faces(mesh);
+  VertexFaces vf = vertex_faces(input);
+  // Pre-smoothing: the curvature of a diffused copy of the surface is reported at the
+  // original vertices.
+  TriMesh smoothed;
+  if (opt.smoothing_scale > 0) {
+    report(opt.progress, 5, "Pre-smoothing");
+    smoothed.faces = input.faces;
+    smoothed.vertices = input.vertices;
+    diffuse(input, vertex_rings(input, vf), opt.smoothing_scale, smoothed.vertices);
+  }
+  const TriMesh& mesh = opt.smoothing_scale > 0 ? smoothed : input;
   report(opt.progress, 10, "Normals and Voronoi areas");
   std::vector<Vec3> normals = vertex_normals(mesh, vf);
   if (opt.estimator == CurvatureEstimator::Jet) return compute_curvature_jets(mesh, opt, vf, std::move(normals));
@@ -326,7 +322,6 @@ static Curvature compute_curvature_facefit(const TriMesh& mesh, const CurvatureO
   const int nv = mesh.n_vertices(), nf = mesh.n_faces();
   Curvature out;
   out.normal = std::move(normals);
-  if (opt.smoothing_scale > 0) smooth_normals(mesh, vertex_rings(mesh, vf), opt.smoothing_scale, out.normal);
   std::vector<FaceFrame> ff(nf);
   long long degenerate = 0;
 #pragma omp parallel for schedule(static) reduction(+ : degenerate)

@@ -29,10 +29,10 @@ EdgeStats edge_length_stats(const TriMesh& mesh) {
   return s;
 }
 
-void require_triangles(const TriMesh& mesh, const char* filter_name) {
+void require_triangles(const TriMesh& mesh) {
   std::ostringstream msg;
   if (mesh.faces.empty()) {
-    msg << filter_name << " needs a triangle mesh, but this layer has "
+    msg << "The filter needs a triangle mesh, but this layer has "
         << (mesh.vertices.empty() ? std::string("no vertices at all (empty mesh).")
                                   : std::to_string(mesh.vertices.size()) +
                                         " vertices and no faces (a point cloud). Reconstruct a surface first, e.g. "
@@ -45,14 +45,14 @@ void require_triangles(const TriMesh& mesh, const char* filter_name) {
     for (int j = 0; j < 3; ++j)
       if (f[j] < 0 || f[j] >= nv) ++bad_index;
   if (bad_index) {
-    msg << filter_name << ": " << bad_index << " face corners refer to vertices that do not exist.";
+    msg << bad_index << " face corners refer to vertices that do not exist.";
     throw InputError(msg.str());
   }
   long long nonfinite = 0;
   for (const auto& p : mesh.vertices)
     if (!p.allFinite()) ++nonfinite;
   if (nonfinite) {
-    msg << filter_name << ": " << nonfinite
+    msg << nonfinite
         << " vertices have invalid (NaN or infinite) coordinates. Remove them first, e.g. "
            "Filters > Cleaning and Repairing > Remove Unreferenced Vertices after deleting the faces that use them.";
     throw InputError(msg.str());

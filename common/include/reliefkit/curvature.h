@@ -45,8 +45,9 @@ enum class CurvatureEstimator {
 
 struct CurvatureOptions {
   CurvatureEstimator estimator = CurvatureEstimator::Jet;
-  /// Gaussian scale (mesh units) of a diffusion of the vertex normals before fitting; it
-  /// suppresses scanner noise finer than the scale. 0 = no smoothing.
+  /// Gaussian scale (mesh units) of a diffusion of the vertex positions (on a copy) before the
+  /// estimate; it suppresses scanner noise finer than the scale. Results stay attached to the
+  /// original vertices; normals and areas are those of the smoothed copy. 0 = no smoothing.
   double smoothing_scale = 0;
   /// Also estimate the derivative tensor (the second pass roughly doubles the time).
   bool derivatives = true;

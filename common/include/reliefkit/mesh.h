@@ -48,7 +48,7 @@ EdgeStats edge_length_stats(const TriMesh& mesh);
 /// faces (empty mesh or point cloud), a face refers to a missing vertex, or a coordinate is
 /// not finite. Degenerate faces and non-manifold elements are allowed (cores skip and count
 /// them).
-void require_triangles(const TriMesh& mesh, const char* filter_name);
+void require_triangles(const TriMesh& mesh);
 
 /// Vertex -> incident faces, compressed (CSR) adjacency.
 struct VertexFaces {

@@ -1,0 +1,55 @@
+#include "rk_plugin.h"
+
+#include <exception>
+
+#include "reliefkit/mesh.h"
+
+namespace reliefkit::ml {
+
+ReliefKitPlugin::ReliefKitPlugin(QString plugin_name, std::vector<FilterSpec> filters)
+    : plugin_name_(std::move(plugin_name)), filters_(std::move(filters)) {
+  for (const auto& f : filters_) typeList << f.id;
+  for (FilterIDType id : types()) actionList << new QAction(filterName(id), this);
+}
+
+const FilterSpec& ReliefKitPlugin::spec(FilterIDType id) const {
+  for (const auto& f : filters_)
+    if (f.id == id) return f;
+  return filters_.front();  // MeshLab only asks for ids it got from types()
+}
+
+QString ReliefKitPlugin::filterName(FilterIDType id) const { return spec(id).name; }
+QString ReliefKitPlugin::filterInfo(FilterIDType id) const { return spec(id).info; }
+MeshFilterInterface::FilterClass ReliefKitPlugin::getClass(QAction* a) { return spec(ID(a)).menu; }
+int ReliefKitPlugin::getPreConditions(QAction* a) const { return spec(ID(a)).preconditions; }
+int ReliefKitPlugin::postCondition(QAction* a) const { return spec(ID(a)).postconditions; }
+
+void ReliefKitPlugin::initParameterSet(QAction* a, MeshModel& m, RichParameterList& par) {
+  const FilterSpec& s = spec(ID(a));
+  if (s.parameters) s.parameters(m, par);
+}
+
+bool ReliefKitPlugin::applyFilter(QAction* a, MeshDocument& md, const RichParameterList& par,
+                                  vcg::CallBackPos* cb) {
+  const FilterSpec& s = spec(ID(a));
+  auto fail = [&](const QString& msg) {
+    errorMessage = msg;
+    // meshlabserver does not print errorMsg(): log it as well, so batch users see why.
+    Log(GLLogStream::SYSTEM, qUtf8Printable(s.name + " failed: " + msg));
+    return false;
+  };
+  if (md.mm() == nullptr) return fail("there is no mesh layer to work on; open a mesh first.");
+  try {
+    FilterCall call{md, *md.mm(), par, cb, [this](const QString& line) { Log(qUtf8Printable(line)); }};
+    s.apply(call);
+    return true;
+  } catch (const reliefkit::InputError& e) {
+    return fail(QString::fromUtf8(e.what()));
+  } catch (const std::bad_alloc&) {
+    return fail("not enough memory for this mesh.");
+  } catch (const std::exception& e) {
+    return fail(QString("internal error: ") + e.what());
+  }
+}
+
+}  // namespace reliefkit::ml

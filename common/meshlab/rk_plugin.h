@@ -1,0 +1,58 @@
+// ReliefKit — the thin MeshLab 2020.09 adapter shared by all ReliefKit plugins.
+//
+// A plugin is one table of FilterSpec entries (name, help, menu class, parameters, apply);
+// this base class answers every MeshFilterInterface call from the table, so adding a filter
+// touches one place. Everything that depends on MeshLab's plugin interface lives in this folder:
+// a later MeshLab release line (FilterPlugin, new applyFilter signature, exceptions) needs a new
+// version of these two files only.
+#pragma once
+
+#include <common/interfaces.h>
+
+#include <functional>
+#include <vector>
+
+namespace reliefkit::ml {
+
+/// What an apply function gets. Errors are reported by throwing (reliefkit::InputError or any
+/// std::exception); the adapter turns them into MeshLab's error message and a log line.
+struct FilterCall {
+  MeshDocument& doc;
+  MeshModel& mesh;  // the current layer
+  const RichParameterList& params;
+  vcg::CallBackPos* progress;
+  std::function<void(const QString&)> log;
+};
+
+struct FilterSpec {
+  int id;
+  QString name;  // exact name: users' .mlx scripts call filters by it
+  QString info;  // HTML help shown in the filter dialog
+  MeshFilterInterface::FilterClass menu;
+  int preconditions;   // MeshModel::MM_* the filter needs
+  int postconditions;  // MeshModel::MM_* the filter changes
+  std::function<void(MeshModel&, RichParameterList&)> parameters;
+  std::function<void(FilterCall&)> apply;
+};
+
+class ReliefKitPlugin : public QObject, public MeshFilterInterface {
+ public:
+  explicit ReliefKitPlugin(QString plugin_name, std::vector<FilterSpec> filters);
+
+  QString pluginName() const override { return plugin_name_; }
+  QString filterName(FilterIDType id) const override;
+  QString filterInfo(FilterIDType id) const override;
+  FilterClass getClass(QAction* a) override;
+  FILTER_ARITY filterArity(QAction*) const override { return SINGLE_MESH; }
+  int getPreConditions(QAction* a) const override;
+  int postCondition(QAction* a) const override;
+  void initParameterSet(QAction* a, MeshModel& m, RichParameterList& par) override;
+  bool applyFilter(QAction* a, MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb) override;
+
+ private:
+  const FilterSpec& spec(FilterIDType id) const;
+  QString plugin_name_;
+  std::vector<FilterSpec> filters_;
+};
+
+}  // namespace reliefkit::ml

@@ -1,0 +1,133 @@
+#include "curvature_filter.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "mesh_bridge.h"
+#include "reliefkit/curvature.h"
+
+namespace reliefkit::ml {
+namespace {
+
+enum class Quantity { Mean, Gaussian, Maximal, Minimal, Curvedness, Keep };
+const QStringList kQuantities = {"Mean curvature", "Gaussian curvature", "Maximal curvature (k1)",
+                                 "Minimal curvature (k2)", "Curvedness", "None (keep vertex quality)"};
+const QStringList kEstimators = {"Cubic jet fit (accurate)", "Per-face fit (faster, Rusinkiewicz 2004)"};
+
+const char* kInfo =
+    "Estimates, at every vertex, the <b>principal curvatures and directions</b> and the "
+    "<b>curvature-derivative tensor</b> C = (a, b, c, d): how fast the curvature changes across the "
+    "surface. It is the ground of demarcating curves, relief edges and ridges &amp; valleys.<br><br>"
+    "<b>Outputs</b> (on this layer):<ul>"
+    "<li>principal directions and curvatures (MeshLab's <i>Show Curvature</i> decoration draws them);</li>"
+    "<li>per-vertex attributes <code>k1</code>, <code>k2</code> (k1 &ge; k2) and <code>dcurv_a</code>, "
+    "<code>dcurv_b</code>, <code>dcurv_c</code>, <code>dcurv_d</code> (the tensor in the principal frame);</li>"
+    "<li>vertex quality = the quantity you choose, ready for <i>Colorize by vertex quality</i>.</li></ul>"
+    "Sign: curvature is positive on convex parts (a ball, the top of a raised letter) and negative on "
+    "concave ones (a groove, an engraved line), for outward-facing normals. Units: 1/length.<br><br>"
+    "Method: a least-squares cubic height function (osculating jet) is fitted over the two-ring of "
+    "every vertex (F. Cazals, M. Pouget, <b>\"Estimating differential quantities using polynomial "
+    "fitting of osculating jets\"</b>, SGP 2003), or, faster but less accurate on irregular meshes, "
+    "per-face fits (S. Rusinkiewicz, <b>\"Estimating curvatures and their derivatives on triangle "
+    "meshes\"</b>, 3DPVT 2004). The tensor is that of eq. 3.1 in M. Kolomenkin's thesis on curves on "
+    "surfaces (demarcating curves, A. Tal, M. Kolomenkin, I. Shimshoni, SIGGRAPH Asia 2008).";
+
+double quantity(Quantity q, double k1, double k2) {
+  switch (q) {
+    case Quantity::Mean: return 0.5 * (k1 + k2);
+    case Quantity::Gaussian: return k1 * k2;
+    case Quantity::Maximal: return k1;
+    case Quantity::Minimal: return k2;
+    case Quantity::Curvedness: return std::sqrt(0.5 * (k1 * k1 + k2 * k2));
+    case Quantity::Keep: return 0;
+  }
+  return 0;
+}
+
+void parameters(MeshModel& m, RichParameterList& par) {
+  double h = mean_edge_length(m);
+  double diag = m.cm.bbox.Diag() > 0 ? m.cm.bbox.Diag() : 1.0;
+  par.addParam(RichEnum("estimator", 0, kEstimators, "Estimator",
+                        "How curvature is measured. The jet fit is accurate also on irregular scans; the "
+                        "per-face fit is about twice as fast."));
+  par.addParam(RichAbsPerc("presmoothing", float(h), 0.f, float(diag / 10), "Pre-smoothing scale",
+                           "Removes scanner noise smaller than this distance before measuring (a Gaussian "
+                           "scale, in the mesh's units). The default is the mean edge length; 0 turns it "
+                           "off; larger values keep only broader shapes."));
+  par.addParam(RichEnum("quality", 0, kQuantities, "Vertex quality",
+                        "What to store in vertex quality, for Filters > Color Creation and Processing > "
+                        "Colorize by vertex quality. Curvedness = sqrt((k1^2 + k2^2) / 2)."));
+}
+
+void apply(FilterCall& call) {
+  auto t0 = std::chrono::steady_clock::now();
+  View view = view_of(call.mesh);
+  CurvatureOptions opt;
+  opt.estimator = call.params.getEnum("estimator") == 1 ? CurvatureEstimator::FaceFit : CurvatureEstimator::Jet;
+  opt.smoothing_scale = std::max(0.f, call.params.getAbsPerc("presmoothing"));
+  opt.progress = call.progress;
+  Curvature c = compute_curvature(view.mesh, opt);
+  const auto q = static_cast<Quantity>(call.params.getEnum("quality"));
+
+  CMeshO& cm = call.mesh.cm;
+  call.mesh.updateDataMask(MeshModel::MM_VERTCURVDIR | MeshModel::MM_VERTQUALITY);
+  const int nv = view.mesh.n_vertices();
+  std::vector<double> da(nv), db(nv), dc(nv), dd(nv);
+  for (int i = 0; i < nv; ++i) {
+    CVertexO* v = view.vertex_of[i];
+    v->PD1() = Point3m(Scalarm(c.dir1[i].x()), Scalarm(c.dir1[i].y()), Scalarm(c.dir1[i].z()));
+    v->PD2() = Point3m(Scalarm(c.dir2[i].x()), Scalarm(c.dir2[i].y()), Scalarm(c.dir2[i].z()));
+    v->K1() = Scalarm(c.k1[i]);
+    v->K2() = Scalarm(c.k2[i]);
+    if (q != Quantity::Keep) v->Q() = float(quantity(q, c.k1[i], c.k2[i]));
+    da[i] = c.dcurv[i].a;
+    db[i] = c.dcurv[i].b;
+    dc[i] = c.dcurv[i].c;
+    dd[i] = c.dcurv[i].d;
+  }
+  write_vertex_attribute(cm, view, "k1", c.k1);
+  write_vertex_attribute(cm, view, "k2", c.k2);
+  write_vertex_attribute(cm, view, "dcurv_a", da);
+  write_vertex_attribute(cm, view, "dcurv_b", db);
+  write_vertex_attribute(cm, view, "dcurv_c", dc);
+  write_vertex_attribute(cm, view, "dcurv_d", dd);
+
+  double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  call.log(QString("Curvature and derivatives of %1 vertices / %2 faces in %3 s (%4, pre-smoothing %5).")
+               .arg(thousands(nv))
+               .arg(thousands(view.mesh.n_faces()))
+               .arg(secs, 0, 'f', 3)
+               .arg(opt.estimator == CurvatureEstimator::Jet ? "jet fit" : "per-face fit")
+               .arg(opt.smoothing_scale, 0, 'g', 4));
+  if (!c.bad_vertices.empty() || c.degenerate_faces > 0)
+    call.log(QString("%1 vertices had no usable neighbourhood (isolated or only degenerate faces): curvature 0 "
+                     "there; %2 degenerate faces were skipped.")
+                 .arg(thousands(static_cast<long long>(c.bad_vertices.size())))
+                 .arg(thousands(c.degenerate_faces)));
+  if (q != Quantity::Keep) {
+    std::vector<float> qs;
+    qs.reserve(nv);
+    for (int i = 0; i < nv; ++i) qs.push_back(view.vertex_of[i]->Q());
+    std::sort(qs.begin(), qs.end());
+    call.log(QString("Vertex quality = %1: 5th percentile %2, median %3, 95th percentile %4.")
+                 .arg(kQuantities[int(q)])
+                 .arg(qs[nv / 20], 0, 'g', 4)
+                 .arg(qs[nv / 2], 0, 'g', 4)
+                 .arg(qs[(nv * 19) / 20], 0, 'g', 4));
+  }
+}
+
+}  // namespace
+
+FilterSpec curvature_tensor_filter(int id) {
+  return FilterSpec{id,
+                    "Compute Curvature Tensor and Derivatives",
+                    kInfo,
+                    MeshFilterInterface::FilterClass(MeshFilterInterface::Normal | MeshFilterInterface::VertexColoring),
+                    MeshModel::MM_NONE,
+                    MeshModel::MM_VERTCURVDIR | MeshModel::MM_VERTQUALITY,
+                    parameters,
+                    apply};
+}
+
+}  // namespace reliefkit::ml

@@ -1,0 +1,84 @@
+#include "server.h"
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace rktest {
+
+static std::string quote(const std::string& s) {
+  std::string r = "'";
+  for (char c : s) r += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+  return r + "'";
+}
+
+ServerRun run_meshlabserver(const std::vector<std::string>& args) {
+  std::string cmd = quote(std::string(RELIEFKIT_SOURCE_DIR) + "/scripts/meshlabserver");
+  for (const auto& a : args) cmd += " " + quote(a);
+  cmd += " 2>&1";
+  ServerRun r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
+  int st = pclose(p);
+  if (WIFSIGNALED(st)) {
+    r.crashed = true;
+  } else if (WIFEXITED(st)) {
+    r.status = WEXITSTATUS(st);
+    // xvfb-run reports a child killed by signal N as 128 + N; meshlabserver's exit(-1) is 255.
+    r.crashed = r.status > 128 && r.status < 160;
+  }
+  return r;
+}
+
+std::string temp_dir(const std::string& name) {
+  auto d = std::filesystem::path(RELIEFKIT_BINARY_DIR) / "test-output" / name;
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d.string();
+}
+
+std::string mlx_filter(const std::string& name, const std::vector<std::string>& params) {
+  std::string s = " <filter name=\"" + name + "\">\n";
+  for (const auto& p : params) s += "  " + p + "\n";
+  return s + " </filter>\n";
+}
+
+std::string mlx_script(const std::vector<std::string>& filters) {
+  std::string s = "<!DOCTYPE FilterScript>\n<FilterScript>\n";
+  for (const auto& f : filters) s += f;
+  return s + "</FilterScript>\n";
+}
+
+std::string param_enum(const std::string& name, int value, int cardinality) {
+  std::ostringstream s;
+  s << "<Param type=\"RichEnum\" name=\"" << name << "\" value=\"" << value << "\" enum_cardinality=\""
+    << cardinality << "\"";
+  for (int i = 0; i < cardinality; ++i) s << " enum_val" << i << "=\"" << i << "\"";
+  s << "/>";
+  return s.str();
+}
+std::string param_absperc(const std::string& name, double value) {
+  std::ostringstream s;
+  s << "<Param type=\"RichAbsPerc\" name=\"" << name << "\" value=\"" << value << "\" min=\"0\" max=\"1e9\"/>";
+  return s.str();
+}
+std::string param_float(const std::string& name, double value) {
+  std::ostringstream s;
+  s << "<Param type=\"RichFloat\" name=\"" << name << "\" value=\"" << value << "\"/>";
+  return s.str();
+}
+std::string param_bool(const std::string& name, bool value) {
+  return "<Param type=\"RichBool\" name=\"" + name + "\" value=\"" + (value ? "true" : "false") + "\"/>";
+}
+
+void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+}  // namespace rktest

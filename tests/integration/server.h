@@ -1,0 +1,30 @@
+// Running the real meshlabserver (private prefix with our plugins) from tests.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rktest {
+
+struct ServerRun {
+  int status = -1;       // exit status of the wrapper (xvfb-run passes meshlabserver's through)
+  bool crashed = false;  // killed by a signal (abort, segfault): never acceptable
+  std::string output;    // stdout + stderr
+};
+
+/// Runs scripts/meshlabserver with the given arguments.
+ServerRun run_meshlabserver(const std::vector<std::string>& args);
+
+/// A temporary directory for one test (removed by the caller's choice; kept on failure).
+std::string temp_dir(const std::string& name);
+
+/// One <filter> element of an .mlx script; `params` are complete <Param .../> elements.
+std::string mlx_filter(const std::string& name, const std::vector<std::string>& params);
+std::string mlx_script(const std::vector<std::string>& filters);
+std::string param_enum(const std::string& name, int value, int cardinality);
+std::string param_absperc(const std::string& name, double value);
+std::string param_float(const std::string& name, double value);
+std::string param_bool(const std::string& name, bool value);
+void write_text(const std::string& path, const std::string& text);
+
+}  // namespace rktest

@@ -1,0 +1,25 @@
+// Minimal PLY / OBJ reading and writing for tests and benchmarks (the formats meshlabserver
+// reads and writes: PLY ascii or binary little-endian, OBJ with v / f / l records).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "reliefkit/mesh.h"
+
+namespace rktest {
+
+struct MeshFile {
+  reliefkit::TriMesh mesh;
+  std::map<std::string, std::vector<double>> vertex_props;  // every non-coordinate vertex property
+  std::vector<std::array<int, 2>> edges;                     // OBJ 'l' records / PLY edge elements
+};
+
+/// Reads a PLY or OBJ file (by extension). Throws std::runtime_error on failure.
+MeshFile read_mesh(const std::string& path);
+
+/// Writes a binary little-endian PLY with float coordinates (NaNs are written as they are).
+void write_ply(const std::string& path, const reliefkit::TriMesh& mesh);
+
+}  // namespace rktest
