@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "reliefkit/memory.h"
 #include "reliefkit/smoothing.h"
 
 namespace reliefkit {
@@ -77,6 +78,30 @@ inline void mixed_corner_areas(const Vec3 e[3], double area, double c[3]) {
     if (!std::isfinite(c[j])) c[j] = 0;
 }
 
+// Mixed Voronoi area of one corner of a face (0 for degenerate faces).
+inline double corner_area(const TriMesh& mesh, int face, int corner) {
+  const auto& f = mesh.faces[face];
+  Vec3 e[3] = {mesh.vertices[f[2]] - mesh.vertices[f[1]], mesh.vertices[f[0]] - mesh.vertices[f[2]],
+               mesh.vertices[f[1]] - mesh.vertices[f[0]]};
+  double area = 0.5 * e[0].cross(e[1]).norm();
+  if (!(area > 0) || !std::isfinite(area)) return 0;
+  double c[3];
+  mixed_corner_areas(e, area, c);
+  return c[corner];
+}
+
+long long count_degenerate_faces(const TriMesh& mesh) {
+  long long n = 0;
+  const int nf = mesh.n_faces();
+#pragma omp parallel for schedule(static) reduction(+ : n)
+  for (int i = 0; i < nf; ++i) {
+    const auto& f = mesh.faces[i];
+    double a = (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross(mesh.vertices[f[2]] - mesh.vertices[f[0]]).norm();
+    if (!(a > 0) || !std::isfinite(a)) ++n;
+  }
+  return n;
+}
+
 // Per-face data kept between the passes (floats: 64 bytes a face).
 struct FaceFrame {
   float t[3], b[3];   // orthonormal tangent frame of the face
@@ -98,7 +123,8 @@ void report(Progress cb, int pct, const char* what) {
 
 std::vector<Vec3> vertex_normals(const TriMesh& mesh, const VertexFaces& vf) {
   const int nv = mesh.n_vertices();
-  std::vector<Vec3> n(nv);
+  std::vector<Vec3> n;
+  sized(n, nv, Vec3(Vec3::Zero()));
 #pragma omp parallel for schedule(static)
   for (int v = 0; v < nv; ++v) {
     Vec3 acc = Vec3::Zero();
@@ -119,7 +145,8 @@ std::vector<Vec3> vertex_normals(const TriMesh& mesh, const VertexFaces& vf) {
 
 std::vector<std::array<double, 3>> corner_areas(const TriMesh& mesh) {
   const int nf = mesh.n_faces();
-  std::vector<std::array<double, 3>> ca(nf);
+  std::vector<std::array<double, 3>> ca;
+  sized(ca, nf);
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < nf; ++i) {
     const auto& f = mesh.faces[i];
@@ -178,70 +205,136 @@ inline Vec3 any_tangent(const Vec3& n) {
   return (u - n * n.dot(u)).normalized();
 }
 
-// Collects the two-ring of v (without v) into `out` (sorted, unique).
-inline void two_ring(const VertexRing& ring, int v, std::vector<int>& out) {
+constexpr int kMaxNeighbours = 128;
+
+// Collects the two-ring of v (without v), one-ring first, from the vertex-face adjacency.
+// `mark` holds one stamp per vertex (per thread); stamping with v + 1 makes a reset unnecessary.
+inline void two_ring(const TriMesh& mesh, const VertexFaces& vf, int v, std::vector<int>& out,
+                     std::vector<int>& mark) {
   out.clear();
-  for (int k = ring.offset[v]; k < ring.offset[v + 1]; ++k) {
-    int u = ring.vertex[k];
-    out.push_back(u);
-    for (int l = ring.offset[u]; l < ring.offset[u + 1]; ++l) out.push_back(ring.vertex[l]);
-  }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  auto it = std::lower_bound(out.begin(), out.end(), v);
-  if (it != out.end() && *it == v) out.erase(it);
+  const int stamp = v + 1;
+  mark[v] = stamp;
+  auto add_ring_of = [&](int c) {
+    for (int k = vf.offset[c]; k < vf.offset[c + 1]; ++k) {
+      const auto& f = mesh.faces[vf.face[k]];
+      for (int j = 0; j < 3; ++j)
+        if (mark[f[j]] != stamp) mark[f[j]] = stamp, out.push_back(f[j]);
+    }
+  };
+  add_ring_of(v);
+  const size_t first = out.size();
+  for (size_t i = 0; i < first; ++i) add_ring_of(out[i]);
 }
 
-// Least-squares osculating jet at one vertex: the height over the tangent plane of `n`,
+// Exponents (i, j) and factors c of the basis X^i Y^j * c:
+// [X, Y, X^2/2, XY, Y^2/2, X^3/6, X^2 Y/2, X Y^2/2, Y^3/6].
+constexpr int kBasisI[9] = {1, 0, 2, 1, 0, 3, 2, 1, 0};
+constexpr int kBasisJ[9] = {0, 1, 0, 1, 2, 0, 1, 2, 3};
+constexpr double kBasisC[9] = {1, 1, 0.5, 1, 0.5, 1.0 / 6, 0.5, 0.5, 1.0 / 6};
+
+// Moments S[i][j] = sum X^i Y^j (i + j <= 6) and T[i][j] = sum Z X^i Y^j (i + j <= 3) of the
+// neighbours in the frame (u, w, n). Each moment is a dot product over the neighbours, which
+// vectorises (AVX2 where the processor has it, by function multi-versioning). `scratch` holds
+// 17 m doubles.
+__attribute__((target_clones("avx2", "default"))) void height_moments(const double* dx, const double* dy,
+                                                                     const double* dz, int m, const double* frame,
+                                                                     double S[7][7], double T[4][4], double* scratch) {
+  double* X = scratch;      // m
+  double* Y = X + m;        // m
+  double* Z = Y + m;        // m
+  double* xp = Z + m;       // 7 m: X^i
+  double* yp = xp + 7 * m;  // 7 m: Y^j
+  for (int k = 0; k < m; ++k) {
+    X[k] = dx[k] * frame[0] + dy[k] * frame[1] + dz[k] * frame[2];
+    Y[k] = dx[k] * frame[3] + dy[k] * frame[4] + dz[k] * frame[5];
+    Z[k] = dx[k] * frame[6] + dy[k] * frame[7] + dz[k] * frame[8];
+    xp[k] = 1;
+    yp[k] = 1;
+  }
+  for (int i = 1; i < 7; ++i)
+    for (int k = 0; k < m; ++k) {
+      xp[i * m + k] = xp[(i - 1) * m + k] * X[k];
+      yp[i * m + k] = yp[(i - 1) * m + k] * Y[k];
+    }
+  for (int i = 0; i <= 6; ++i)
+    for (int j = 0; i + j <= 6; ++j) {
+      const double *a = xp + i * m, *b = yp + j * m;
+      double acc = 0;
+      for (int k = 0; k < m; ++k) acc += a[k] * b[k];
+      S[i][j] = acc;
+    }
+  for (int i = 0; i <= 3; ++i)
+    for (int j = 0; i + j <= 3; ++j) {
+      const double *a = xp + i * m, *b = yp + j * m;
+      double acc = 0;
+      for (int k = 0; k < m; ++k) acc += a[k] * b[k] * Z[k];
+      T[i][j] = acc;
+    }
+}
+
+// Least-squares fit of z = sum_k x_k * basis_k over the neighbours with the first N basis
+// functions (N = 9: cubic, N = 5: quadratic), from the moments. False if singular.
+template <int N>
+bool solve_height(const double S[7][7], const double T[4][4], double* x) {
+  Eigen::Matrix<double, N, N> A;
+  Eigen::Matrix<double, N, 1> b;
+  for (int p = 0; p < N; ++p) {
+    for (int q = 0; q < N; ++q)
+      A(p, q) = kBasisC[p] * kBasisC[q] * S[kBasisI[p] + kBasisI[q]][kBasisJ[p] + kBasisJ[q]];
+    b[p] = kBasisC[p] * T[kBasisI[p]][kBasisJ[p]];
+  }
+  Eigen::LLT<Eigen::Matrix<double, N, N>> llt(A);
+  if (llt.info() != Eigen::Success) return false;
+  Eigen::Matrix<double, N, 1> sol = llt.solve(b);
+  if (!sol.allFinite()) return false;
+  for (int k = 0; k < N; ++k) x[k] = sol[k];
+  return true;
+}
+
+// Least-squares osculating jet at one vertex: the height over the tangent plane of the vertex
+// normal n0 (Max's weights),
 //   z = g1 x + g2 y + (A x^2 + 2B xy + C y^2)/2 + (D x^3 + 3E x^2 y + 3F x y^2 + G y^3)/6,
-// fitted to the neighbours (cubic with >= 12 of them, quadratic with >= 6). The tangent plane is
-// refitted once with the gradient (g1, g2), which makes the curvature estimate second-order
-// accurate on irregular meshes. Returns false if no fit was possible.
-bool jet_at(const TriMesh& mesh, int v, const std::vector<int>& nb, Vec3& n, double& ku, double& kuv,
-            double& kv, Vec3& u, Vec3& w, double C[4]) {
-  const int m = static_cast<int>(nb.size());
+// fitted to the two-ring (cubic with >= 12 neighbours, quadratic with >= 6). The fitted gradient
+// (g1, g2) corrects the normal: n = normalise(n0 - g1 u - g2 w), and II is re-expressed in the
+// corrected tangent plane with the metric factor 1/sqrt(1 + |g|^2), so an inexact starting
+// normal costs only second-order terms. Returns false if no fit was possible.
+bool jet_at(const TriMesh& mesh, int v, const std::vector<int>& nb, std::vector<double>& buf, Vec3& n,
+            double& ku, double& kuv, double& kv, Vec3& u, Vec3& w, double C[4]) {
+  const int m = std::min(static_cast<int>(nb.size()), kMaxNeighbours);  // one-ring comes first
   if (m < 6) return false;
-  const bool cubic = m >= 12;
-  const int nu = cubic ? 9 : 5;
+  buf.resize(20 * size_t(m));  // dx, dy, dz and the moments' scratch
+  double *dx = buf.data(), *dy = dx + m, *dz = dy + m;
   const Vec3& p = mesh.vertices[v];
   double s2 = 0;
-  for (int j : nb) s2 += (mesh.vertices[j] - p).squaredNorm();
+  for (int j = 0; j < m; ++j) {
+    Vec3 d = mesh.vertices[nb[j]] - p;
+    dx[j] = d.x(), dy[j] = d.y(), dz[j] = d.z();
+    s2 += d.squaredNorm();
+  }
   double s = std::sqrt(s2 / m);
   if (!(s > 0) || !std::isfinite(s)) return false;
-  double inv = 1 / s;
-  Eigen::Matrix<double, 9, 1> x = Eigen::Matrix<double, 9, 1>::Zero();
-  for (int iter = 0; iter < 2; ++iter) {
-    u = any_tangent(n);
-    w = n.cross(u);
-    Eigen::Matrix<double, 9, 9> AtA = Eigen::Matrix<double, 9, 9>::Zero();
-    Eigen::Matrix<double, 9, 1> Atb = Eigen::Matrix<double, 9, 1>::Zero();
-    for (int j : nb) {
-      Vec3 d = (mesh.vertices[j] - p) * inv;
-      double X = d.dot(u), Y = d.dot(w), Z = d.dot(n);
-      Eigen::Matrix<double, 9, 1> r;
-      r << X, Y, 0.5 * X * X, X * Y, 0.5 * Y * Y, X * X * X / 6, 0.5 * X * X * Y, 0.5 * X * Y * Y, Y * Y * Y / 6;
-      AtA.topLeftCorner(nu, nu).selfadjointView<Eigen::Lower>().rankUpdate(r.head(nu));
-      Atb.head(nu) += r.head(nu) * Z;
-    }
-    AtA.topLeftCorner(nu, nu) = AtA.topLeftCorner(nu, nu).selfadjointView<Eigen::Lower>();
-    Eigen::LDLT<Eigen::MatrixXd> ldlt(AtA.topLeftCorner(nu, nu));
-    if (ldlt.info() != Eigen::Success) return false;
-    x.head(nu) = ldlt.solve(Atb.head(nu));
-    if (!x.head(nu).allFinite()) return false;
-    if (iter == 0) {
-      Vec3 nn = n - x[0] * u - x[1] * w;
-      double l = nn.norm();
-      if (!(l > 0)) return false;
-      n = nn / l;
-    }
-  }
-  // Remaining tilt (second order) is corrected through the metric: II ~ Hess / sqrt(1+|g|^2).
-  double g = 1 / std::sqrt(1 + x[0] * x[0] + x[1] * x[1]);
-  ku = -x[2] * inv * g;
-  kuv = -x[3] * inv * g;
-  kv = -x[4] * inv * g;
-  double inv2 = inv * inv;
-  for (int k = 0; k < 4; ++k) C[k] = cubic ? -x[5 + k] * inv2 : 0.0;
+  const double inv = 1 / s;
+  for (int j = 0; j < 3 * m; ++j) buf[j] *= inv;  // dx, dy, dz
+  double x[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  Vec3 u0 = any_tangent(n), w0 = n.cross(u0);
+  const double frame[9] = {u0.x(), u0.y(), u0.z(), w0.x(), w0.y(), w0.z(), n.x(), n.y(), n.z()};
+  double S[7][7], T[4][4];
+  height_moments(dx, dy, dz, m, frame, S, T, dz + m);
+  const bool cubic = m >= 12;
+  if (!(cubic ? solve_height<9>(S, T, x) : solve_height<5>(S, T, x))) return false;
+  Vec3 nn = n - x[0] * u0 - x[1] * w0;
+  double l = nn.norm();
+  if (!(l > 0)) return false;
+  const double g = 1 / std::sqrt(1 + x[0] * x[0] + x[1] * x[1]);
+  const double inv2 = inv * inv;
+  double C0[4];
+  for (int k = 0; k < 4; ++k) C0[k] = cubic ? -x[5 + k] * inv2 : 0.0;
+  n = nn / l;
+  u = any_tangent(n);
+  w = n.cross(u);
+  project_II(u0, w0, -x[2] * inv * g, -x[3] * inv * g, -x[4] * inv * g, u, w, ku, kuv, kv);
+  CurvatureDerivative c = project_C(u0, w0, C0, u, w);
+  C[0] = c.a, C[1] = c.b, C[2] = c.c, C[3] = c.d;
   return true;
 }
 
@@ -255,31 +348,33 @@ static Curvature compute_curvature_jets(const TriMesh& mesh, const CurvatureOpti
   const int nv = mesh.n_vertices();
   Curvature out;
   out.normal = std::move(normals);
-  report(opt.progress, 20, "Vertex neighbourhoods");
-  VertexRing ring = vertex_rings(mesh, vf);
-  auto ca = corner_areas(mesh);
-  out.point_area.assign(nv, 0);
-  for (size_t f = 0; f < mesh.faces.size(); ++f)
-    for (int j = 0; j < 3; ++j) out.point_area[mesh.faces[f][j]] += ca[f][j];
-  for (const auto& c : ca)
-    if (!(c[0] + c[1] + c[2] > 0)) ++out.degenerate_faces;
-  out.dir1.resize(nv);
-  out.dir2.resize(nv);
-  out.k1.assign(nv, 0);
-  out.k2.assign(nv, 0);
-  if (opt.derivatives) out.dcurv.assign(nv, CurvatureDerivative{});
+  report(opt.progress, 20, "Voronoi areas");
+  sized(out.point_area, nv);
+#pragma omp parallel for schedule(static)
+  for (int v = 0; v < nv; ++v) {
+    double a = 0;
+    for (int k = vf.offset[v]; k < vf.offset[v + 1]; ++k) a += corner_area(mesh, vf.face[k], vf.corner[k]);
+    out.point_area[v] = a;
+  }
+  out.degenerate_faces = count_degenerate_faces(mesh);
+  sized(out.dir1, nv, Vec3(Vec3::Zero()));
+  sized(out.dir2, nv, Vec3(Vec3::Zero()));
+  sized(out.k1, nv);
+  sized(out.k2, nv);
+  if (opt.derivatives) sized(out.dcurv, nv);
   std::vector<char> bad(nv, 0);
   report(opt.progress, 35, "Fitting local jets");
 #pragma omp parallel
   {
-    std::vector<int> nb;
+    std::vector<int> nb, mark(nv, 0);
+    std::vector<double> buf;
     nb.reserve(64);
-#pragma omp for schedule(dynamic, 1024)
+#pragma omp for schedule(dynamic, 4096)
     for (int v = 0; v < nv; ++v) {
       Vec3 n = out.normal[v], u, w;
       double ku = 0, kuv = 0, kv = 0, C[4] = {0, 0, 0, 0};
-      two_ring(ring, v, nb);
-      bool ok = out.point_area[v] > 0 && jet_at(mesh, v, nb, n, ku, kuv, kv, u, w, C);
+      two_ring(mesh, vf, v, nb, mark);
+      bool ok = out.point_area[v] > 0 && jet_at(mesh, v, nb, buf, n, ku, kuv, kv, u, w, C);
       if (!ok) {
         bad[v] = 1;
         out.dir1[v] = any_tangent(out.normal[v]);
@@ -322,7 +417,8 @@ static Curvature compute_curvature_facefit(const TriMesh& mesh, const CurvatureO
   const int nv = mesh.n_vertices(), nf = mesh.n_faces();
   Curvature out;
   out.normal = std::move(normals);
-  std::vector<FaceFrame> ff(nf);
+  std::vector<FaceFrame> ff;
+  sized(ff, nf);
   long long degenerate = 0;
 #pragma omp parallel for schedule(static) reduction(+ : degenerate)
   for (int i = 0; i < nf; ++i) {
@@ -368,11 +464,11 @@ static Curvature compute_curvature_facefit(const TriMesh& mesh, const CurvatureO
   out.degenerate_faces = degenerate;
   report(opt.progress, 35, "Principal curvatures");
 
-  out.dir1.resize(nv);
-  out.dir2.resize(nv);
-  out.k1.assign(nv, 0);
-  out.k2.assign(nv, 0);
-  out.point_area.assign(nv, 0);
+  sized(out.dir1, nv, Vec3(Vec3::Zero()));
+  sized(out.dir2, nv, Vec3(Vec3::Zero()));
+  sized(out.k1, nv);
+  sized(out.k2, nv);
+  sized(out.point_area, nv);
   std::vector<char> bad(nv, 0);
 #pragma omp parallel for schedule(static)
   for (int v = 0; v < nv; ++v) {
@@ -450,7 +546,7 @@ static Curvature compute_curvature_facefit(const TriMesh& mesh, const CurvatureO
       for (int j = 0; j < 4; ++j) fr.C[j] = float(x[j]);
     }
     report(opt.progress, 80, "Curvature derivatives");
-    out.dcurv.assign(nv, CurvatureDerivative{});
+    sized(out.dcurv, nv);
 #pragma omp parallel for schedule(static)
     for (int v = 0; v < nv; ++v) {
       double A = out.point_area[v];

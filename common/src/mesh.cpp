@@ -1,5 +1,7 @@
 #include "reliefkit/mesh.h"
 
+#include "reliefkit/memory.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -66,8 +68,8 @@ VertexFaces vertex_faces(const TriMesh& mesh) {
   for (const auto& f : mesh.faces)
     for (int j = 0; j < 3; ++j) ++vf.offset[f[j] + 1];
   for (int v = 0; v < nv; ++v) vf.offset[v + 1] += vf.offset[v];
-  vf.face.resize(vf.offset[nv]);
-  vf.corner.resize(vf.offset[nv]);
+  sized(vf.face, size_t(vf.offset[nv]));
+  sized(vf.corner, size_t(vf.offset[nv]));
   std::vector<int> fill(vf.offset.begin(), vf.offset.end() - 1);
   for (int fi = 0; fi < mesh.n_faces(); ++fi)
     for (int j = 0; j < 3; ++j) {
@@ -78,29 +80,44 @@ VertexFaces vertex_faces(const TriMesh& mesh) {
   return vf;
 }
 
+// One ring of v: the other corners of its faces, each once (small linear dedupe; rings are short).
+static int collect_ring(const TriMesh& mesh, const VertexFaces& vf, int v, int* out, int cap) {
+  int n = 0;
+  for (int k = vf.offset[v]; k < vf.offset[v + 1]; ++k) {
+    const auto& f = mesh.faces[vf.face[k]];
+    int c = vf.corner[k];
+    for (int u : {f[(c + 1) % 3], f[(c + 2) % 3]}) {
+      if (u == v) continue;
+      bool seen = false;
+      for (int i = 0; i < n && !seen; ++i) seen = out[i] == u;
+      if (!seen && n < cap) out[n++] = u;
+    }
+  }
+  return n;
+}
+
 VertexRing vertex_rings(const TriMesh& mesh, const VertexFaces& vf) {
   VertexRing r;
   const int nv = mesh.n_vertices();
-  r.offset.assign(nv + 1, 0);
-  std::vector<std::vector<int>> tmp;  // per-thread scratch would be faster; rings are small
-  std::vector<int> all;
-  all.reserve(vf.face.size() * 2);
-  std::vector<int> ring;
-  for (int v = 0; v < nv; ++v) {
-    ring.clear();
-    for (int k = vf.offset[v]; k < vf.offset[v + 1]; ++k) {
-      const auto& f = mesh.faces[vf.face[k]];
-      int c = vf.corner[k];
-      ring.push_back(f[(c + 1) % 3]);
-      ring.push_back(f[(c + 2) % 3]);
-    }
-    std::sort(ring.begin(), ring.end());
-    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-    ring.erase(std::remove(ring.begin(), ring.end(), v), ring.end());
-    all.insert(all.end(), ring.begin(), ring.end());
-    r.offset[v + 1] = static_cast<int>(all.size());
+  sized(r.offset, size_t(nv) + 1);
+  constexpr int kCap = 1024;  // neighbours kept per vertex (only pathological fans exceed it)
+#pragma omp parallel
+  {
+    std::vector<int> tmp(kCap);
+#pragma omp for schedule(static)
+    for (int v = 0; v < nv; ++v) r.offset[v + 1] = collect_ring(mesh, vf, v, tmp.data(), kCap);
   }
-  r.vertex = std::move(all);
+  for (int v = 0; v < nv; ++v) r.offset[v + 1] += r.offset[v];
+  sized(r.vertex, size_t(r.offset[nv]));
+#pragma omp parallel
+  {
+    std::vector<int> tmp(kCap);
+#pragma omp for schedule(static)
+    for (int v = 0; v < nv; ++v) {
+      int n = collect_ring(mesh, vf, v, tmp.data(), kCap);
+      std::copy(tmp.begin(), tmp.begin() + n, r.vertex.begin() + r.offset[v]);
+    }
+  }
   return r;
 }
 
