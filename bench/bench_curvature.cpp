@@ -31,22 +31,6 @@ long status_kb(const char* key) {
 }
 void reset_peak() { std::ofstream("/proc/self/clear_refs") << "5"; }
 
-// Torus with a relief: tube radius modulated by bumps; jittered parameters.
-TriMesh relief_torus(long faces) {
-  int nv = int(std::sqrt(faces / 2.0 / 3.0));
-  int nu = int(faces / 2 / nv);
-  TriMesh m = rktest::torus(3, 1, nu, nv, 0.4, 11);
-  for (auto& p : m.vertices) {
-    double u = std::atan2(p.y(), p.x());
-    Vec3 c(3 * std::cos(u), 3 * std::sin(u), 0);
-    Vec3 d = p - c;
-    double v = std::atan2(d.z(), std::hypot(p.x(), p.y()) - 3);
-    double bump = 0.05 * std::sin(12 * u) * std::sin(6 * v);
-    p = c + d * (1 + bump);
-  }
-  return m;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -66,7 +50,7 @@ int main(int argc, char** argv) {
   std::printf("%-10s %-10s %-28s %9s %12s %10s\n", "faces", "vertices", "computation", "time s", "s / M faces",
               "peak MiB");
   for (long target : sizes) {
-    TriMesh m = relief_torus(target);
+    TriMesh m = rktest::relief_torus(target);
     struct Config {
       const char* name;
       CurvatureEstimator est;

@@ -78,18 +78,6 @@ inline void mixed_corner_areas(const Vec3 e[3], double area, double c[3]) {
     if (!std::isfinite(c[j])) c[j] = 0;
 }
 
-// Mixed Voronoi area of one corner of a face (0 for degenerate faces).
-inline double corner_area(const TriMesh& mesh, int face, int corner) {
-  const auto& f = mesh.faces[face];
-  Vec3 e[3] = {mesh.vertices[f[2]] - mesh.vertices[f[1]], mesh.vertices[f[0]] - mesh.vertices[f[2]],
-               mesh.vertices[f[1]] - mesh.vertices[f[0]]};
-  double area = 0.5 * e[0].cross(e[1]).norm();
-  if (!(area > 0) || !std::isfinite(area)) return 0;
-  double c[3];
-  mixed_corner_areas(e, area, c);
-  return c[corner];
-}
-
 long long count_degenerate_faces(const TriMesh& mesh) {
   long long n = 0;
   const int nf = mesh.n_faces();
@@ -283,11 +271,34 @@ bool solve_height(const double S[7][7], const double T[4][4], double* x) {
       A(p, q) = kBasisC[p] * kBasisC[q] * S[kBasisI[p] + kBasisI[q]][kBasisJ[p] + kBasisJ[q]];
     b[p] = kBasisC[p] * T[kBasisI[p]][kBasisJ[p]];
   }
-  Eigen::LLT<Eigen::Matrix<double, N, N>> llt(A);
-  if (llt.info() != Eigen::Success) return false;
-  Eigen::Matrix<double, N, 1> sol = llt.solve(b);
-  if (!sol.allFinite()) return false;
-  for (int k = 0; k < N; ++k) x[k] = sol[k];
+  // Cholesky A = L L^T in place (lower triangle), then two triangular solves. Written out for
+  // fixed N: Eigen's general LLT costs more than the whole fit at this size.
+  for (int j = 0; j < N; ++j) {
+    double d = A(j, j);
+    for (int k = 0; k < j; ++k) d -= A(j, k) * A(j, k);
+    if (!(d > 1e-300)) return false;
+    d = std::sqrt(d);
+    A(j, j) = d;
+    const double id = 1 / d;
+    for (int i = j + 1; i < N; ++i) {
+      double sum = A(i, j);
+      for (int k = 0; k < j; ++k) sum -= A(i, k) * A(j, k);
+      A(i, j) = sum * id;
+    }
+  }
+  double y[N];
+  for (int i = 0; i < N; ++i) {
+    double sum = b[i];
+    for (int k = 0; k < i; ++k) sum -= A(i, k) * y[k];
+    y[i] = sum / A(i, i);
+  }
+  for (int i = N - 1; i >= 0; --i) {
+    double sum = y[i];
+    for (int k = i + 1; k < N; ++k) sum -= A(k, i) * x[k];
+    x[i] = sum / A(i, i);
+  }
+  for (int k = 0; k < N; ++k)
+    if (!std::isfinite(x[k])) return false;
   return true;
 }
 
@@ -349,12 +360,15 @@ static Curvature compute_curvature_jets(const TriMesh& mesh, const CurvatureOpti
   Curvature out;
   out.normal = std::move(normals);
   report(opt.progress, 20, "Voronoi areas");
-  sized(out.point_area, nv);
+  {
+    auto ca = corner_areas(mesh);
+    sized(out.point_area, nv);
 #pragma omp parallel for schedule(static)
-  for (int v = 0; v < nv; ++v) {
-    double a = 0;
-    for (int k = vf.offset[v]; k < vf.offset[v + 1]; ++k) a += corner_area(mesh, vf.face[k], vf.corner[k]);
-    out.point_area[v] = a;
+    for (int v = 0; v < nv; ++v) {
+      double a = 0;
+      for (int k = vf.offset[v]; k < vf.offset[v + 1]; ++k) a += ca[vf.face[k]][vf.corner[k]];
+      out.point_area[v] = a;
+    }
   }
   out.degenerate_faces = count_degenerate_faces(mesh);
   sized(out.dir1, nv, Vec3(Vec3::Zero()));

@@ -139,4 +139,18 @@ TriMesh height_field(const std::function<double(double, double)>& f, double half
   return m;
 }
 
+TriMesh relief_torus(long faces) {
+  int nv = std::max(8, int(std::sqrt(faces / 2.0 / 3.0)));
+  int nu = std::max(8, int(faces / 2 / nv));
+  TriMesh m = torus(3, 1, nu, nv, 0.4, 11);
+  for (auto& p : m.vertices) {
+    double u = std::atan2(p.y(), p.x());
+    Vec3 c(3 * std::cos(u), 3 * std::sin(u), 0);
+    Vec3 d = p - c;
+    double v = std::atan2(d.z(), std::hypot(p.x(), p.y()) - 3);
+    p = c + d * (1 + 0.05 * std::sin(12 * u) * std::sin(6 * v));
+  }
+  return m;
+}
+
 }  // namespace rktest

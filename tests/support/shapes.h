@@ -29,6 +29,10 @@ TriMesh cylinder(double r, double h, int nu, int nz, double jitter = 0, uint32_t
 TriMesh height_field(const std::function<double(double, double)>& f, double half, int n, double jitter = 0,
                      uint32_t seed = 1, int* origin_index = nullptr);
 
+// Benchmark surface: a torus (R = 3, r = 1) with bumps of 5 % of the tube radius, jittered
+// triangulation, about `faces` faces.
+TriMesh relief_torus(long faces);
+
 // Small deterministic RNG (uniform in [0,1), Box-Muller normals).
 struct Rng {
   uint64_t s;

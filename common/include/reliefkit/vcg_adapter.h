@@ -5,6 +5,7 @@
 
 #include <vcg/complex/complex.h>
 
+#include "reliefkit/memory.h"
 #include "reliefkit/mesh.h"
 
 namespace reliefkit {
@@ -18,26 +19,40 @@ struct VcgView {
 template <class MeshT>
 VcgView<MeshT> from_vcg(MeshT& m) {
   VcgView<MeshT> out;
-  std::vector<int> index(m.vert.size(), -1);
-  out.mesh.vertices.reserve(m.vn);
-  out.vertex_of.reserve(m.vn);
-  for (size_t i = 0; i < m.vert.size(); ++i) {
+  const long nvert = static_cast<long>(m.vert.size()), nface = static_cast<long>(m.face.size());
+  // index[i] = TriMesh index of vcg vertex i (-1 if deleted): a prefix count over live vertices.
+  std::vector<int> index;
+  sized(index, size_t(nvert), -1);
+  int live = 0;
+  for (long i = 0; i < nvert; ++i)
+    if (!m.vert[i].IsD()) index[i] = live++;
+  sized(out.mesh.vertices, size_t(live), Vec3(Vec3::Zero()));
+  sized(out.vertex_of, size_t(live), static_cast<typename MeshT::VertexPointer>(nullptr));
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < nvert; ++i) {
     auto& v = m.vert[i];
-    if (v.IsD()) continue;
-    index[i] = static_cast<int>(out.mesh.vertices.size());
-    out.mesh.vertices.emplace_back(double(v.P()[0]), double(v.P()[1]), double(v.P()[2]));
-    out.vertex_of.push_back(&v);
+    if (index[i] < 0) continue;
+    out.mesh.vertices[index[i]] = Vec3(double(v.P()[0]), double(v.P()[1]), double(v.P()[2]));
+    out.vertex_of[index[i]] = &v;
   }
-  out.mesh.faces.reserve(m.fn);
-  for (auto& f : m.face) {
-    if (f.IsD()) continue;
+  std::vector<int> face_index;
+  sized(face_index, size_t(nface), -1);
+  int live_faces = 0;
+  for (long i = 0; i < nface; ++i)
+    if (!m.face[i].IsD()) face_index[i] = live_faces++;
+  sized(out.mesh.faces, size_t(live_faces), std::array<int, 3>{-1, -1, -1});
+  auto* base = nvert > 0 ? &m.vert[0] : nullptr;
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < nface; ++i) {
+    if (face_index[i] < 0) continue;
+    auto& f = m.face[i];
     std::array<int, 3> t;
     for (int j = 0; j < 3; ++j) {
       auto* vp = f.V(j);
-      long k = (vp == nullptr) ? -1 : long(vp - &m.vert[0]);
-      t[j] = (k >= 0 && k < long(index.size())) ? index[k] : -1;
+      long k = (vp == nullptr || base == nullptr) ? -1 : long(vp - base);
+      t[j] = (k >= 0 && k < nvert) ? index[k] : -1;
     }
-    out.mesh.faces.push_back(t);
+    out.mesh.faces[face_index[i]] = t;
   }
   return out;
 }

@@ -1,0 +1,217 @@
+#!/usr/bin/env python3
+"""ReliefKit vs MeshLab's own curvature filters, inside the real meshlabserver.
+
+accuracy: a jittered 128 K-face torus (R = 3, r = 1); each filter writes k1 / k2 into vertex
+          quality; prints the median error of k1 and k2 as a percentage of max|k| = 1/r.
+speed:    synthetic relief tori of ~100 K, 1 M and 4 M faces; one meshlabserver process runs
+          ReliefKit (jet fit), ReliefKit (per-face fit), MeshLab Pseudoinverse Quadric Fitting and
+          MeshLab Taubin on the same mesh; wall time of each filter (from the time stamps of the
+          "filter:" lines meshlabserver prints) and peak RSS growth during it (sampled every 2 ms).
+
+Usage: bench/compare_meshlab.py [accuracy] [speed] [--sizes 100000,1000000,4000000]
+Needs a build (scripts/build.sh). Runs its own Xvfb.
+"""
+import argparse
+import math
+import os
+import struct
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+BUILD = os.environ.get("RELIEFKIT_BUILD_DIR", os.path.join(ROOT, "build"))
+SERVER = os.path.join(BUILD, "prefix", "bin", "meshlabserver")
+MAKE = os.path.join(BUILD, "tests", "rk_make_mesh")
+
+OURS = "Compute Curvature Tensor and Derivatives"
+MESHLAB = "Compute curvature principal directions"
+
+
+def p_enum(name, value, n):
+    vals = " ".join(f'enum_val{i}="{i}"' for i in range(n))
+    return f'<Param type="RichEnum" name="{name}" value="{value}" enum_cardinality="{n}" {vals}/>'
+
+
+def ours(estimator, quality):
+    return (OURS, [p_enum("estimator", estimator, 2),
+                   '<Param type="RichAbsPerc" name="presmoothing" value="0" min="0" max="1e9"/>',
+                   p_enum("quality", quality, 6)])
+
+
+def meshlab(method, quality):  # method 0 Taubin, 3 PQF; quality 2 writes K1, 3 writes K2
+    return (MESHLAB, [p_enum("Method", method, 4), p_enum("CurvColorMethod", quality, 7),
+                      '<Param type="RichBool" name="Autoclean" value="false"/>'])
+
+
+SENTINEL = ("Select None", ['<Param type="RichBool" name="allFaces" value="true"/>',
+                            '<Param type="RichBool" name="allVerts" value="true"/>'])
+
+
+def script(filters):
+    body = "".join(f' <filter name="{n}">\n' + "".join(f"  {p}\n" for p in ps) + " </filter>\n"
+                   for n, ps in filters)
+    return "<!DOCTYPE FilterScript>\n<FilterScript>\n" + body + "</FilterScript>\n"
+
+
+def start_xvfb():
+    for d in range(91, 120):
+        if os.path.exists(f"/tmp/.X{d}-lock"):
+            continue
+        p = subprocess.Popen(["Xvfb", f":{d}", "-screen", "0", "1024x768x24", "-nolisten", "tcp"],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        time.sleep(1.0)
+        if p.poll() is None:
+            return p, f":{d}"
+    sys.exit("cannot start Xvfb")
+
+
+def read_ply_quality(path):
+    with open(path, "rb") as f:
+        header, props, nv = [], [], 0
+        while True:
+            line = f.readline().decode().strip()
+            header.append(line)
+            if line.startswith("element vertex"):
+                nv = int(line.split()[2])
+                cur = props
+            elif line.startswith("element"):
+                cur = None
+            elif line.startswith("property") and cur is not None:
+                cur.append(line.split())
+            if line == "end_header":
+                break
+        assert "format binary_little_endian 1.0" in header, header
+        fmt = {"float": "f", "double": "d", "uchar": "B", "int": "i", "uint": "I"}
+        rec = "<" + "".join(fmt[p[1]] for p in props)
+        size = struct.calcsize(rec)
+        names = [p[2] for p in props]
+        data = f.read(size * nv)
+        pts, q = [], []
+        for i in range(nv):
+            r = dict(zip(names, struct.unpack_from(rec, data, i * size)))
+            pts.append((r["x"], r["y"], r["z"]))
+            q.append(r.get("quality", float("nan")))
+        return pts, q
+
+
+def median(v):
+    v = sorted(v)
+    return v[len(v) // 2]
+
+
+def run(display, mesh, filters, out=None, timed=False):
+    with tempfile.NamedTemporaryFile("w", suffix=".mlx", delete=False) as f:
+        f.write(script(filters + ([SENTINEL] if timed else [])))
+        mlx = f.name
+    cmd = ["stdbuf", "-oL", SERVER, "-i", mesh, "-s", mlx] + (["-o", out, "-m", "vq"] if out else [])
+    env = dict(os.environ, DISPLAY=display)
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=env, text=True, bufsize=1)
+    samples, stop = [], threading.Event()
+
+    def sample():
+        while not stop.is_set():
+            try:
+                with open(f"/proc/{p.pid}/status") as s:
+                    for line in s:
+                        if line.startswith("VmRSS:"):
+                            samples.append((time.monotonic(), int(line.split()[1])))
+            except OSError:
+                pass
+            time.sleep(0.002)
+
+    th = threading.Thread(target=sample)
+    th.start()
+    starts, log = [], []
+    for line in p.stdout:
+        t = time.monotonic()
+        log.append(line)
+        if "filter: " in line:
+            starts.append((t, line.split("filter: ", 1)[1].strip()))
+    p.wait()
+    stop.set()
+    th.join()
+    os.unlink(mlx)
+    if p.returncode != 0:
+        sys.exit("meshlabserver failed:\n" + "".join(log[-30:]))
+    phases = []
+    for (t0, name), (t1, _) in zip(starts, starts[1:]):
+        inside = [kb for (t, kb) in samples if t0 <= t <= t1]
+        before = [kb for (t, kb) in samples if t <= t0]
+        base = before[-1] if before else (inside[0] if inside else 0)
+        phases.append((name, t1 - t0, (max(inside) - base) / 1024 if inside else 0.0))
+    return phases, log
+
+
+def accuracy(display, tmp):
+    mesh = os.path.join(tmp, "torus128k.ply")
+    subprocess.run([MAKE, "torus", "3", "1", "400", "160", "0.5", "7", mesh], check=True)
+    print("Accuracy on a jittered 128,000-face torus (R = 3, r = 1): median |error| / max|k|")
+    print(f"{'method':48s} {'k1 %':>8s} {'k2 %':>8s}")
+    cases = [("ReliefKit, cubic jet fit (default)", lambda q: ours(0, q), 2, 3),
+             ("ReliefKit, per-face fit (Rusinkiewicz)", lambda q: ours(1, q), 2, 3),
+             # MeshLab 2020.09's "Min Curvature" colouring writes K1 (the maximal one) and
+             # "Max Curvature" writes K2: measured, see vcg UpdateQuality::VertexFromMinCurvatureDir.
+             ("MeshLab, Pseudoinverse Quadric Fitting", lambda q: meshlab(3, q), 2, 3),
+             ("MeshLab, Taubin approximation", lambda q: meshlab(0, q), 2, 3)]
+    for name, flt, qmax, qmin in cases:
+        vals = {}
+        for which, q in (("max", qmax), ("min", qmin)):
+            out = os.path.join(tmp, f"acc_{which}.ply")
+            run(display, mesh, [flt(q)], out)
+            vals[which] = read_ply_quality(out)
+        pts = vals["max"][0]
+        errs = {}
+        for sign in (1, -1):  # MeshLab's sign convention may be the opposite one
+            e1, e2 = [], []
+            kmax = vals["max"][1] if sign == 1 else [-x for x in vals["min"][1]]
+            kmin = vals["min"][1] if sign == 1 else [-x for x in vals["max"][1]]
+            for (x, y, z), a, b in zip(pts, kmax, kmin):
+                v = math.atan2(z, math.hypot(x, y) - 3)
+                e1.append(abs(a - 1.0))
+                e2.append(abs(b - math.cos(v) / (3 + math.cos(v))))
+            errs[sign] = (100 * median(e1), 100 * median(e2))
+        best = min(errs.values(), key=sum)
+        print(f"{name:48s} {best[0]:8.3f} {best[1]:8.3f}")
+
+
+def speed(display, tmp, sizes):
+    print("Speed inside meshlabserver (same process, same mesh): wall time and peak RSS growth")
+    print(f"{'faces':>10s}  {'filter':48s} {'time s':>8s} {'s/M faces':>10s} {'+MiB':>8s}")
+    labels = ["ReliefKit jet fit: curvature + derivatives", "ReliefKit per-face fit: curvature + derivatives",
+              "MeshLab Pseudoinverse Quadric Fitting", "MeshLab Taubin approximation"]
+    for n in sizes:
+        mesh = os.path.join(tmp, f"relief{n}.ply")
+        subprocess.run([MAKE, "relief-torus", str(n), mesh], check=True)
+        with open(mesh, "rb") as f:
+            head = f.read(400).decode(errors="ignore")
+        faces = int(head.split("element face ")[1].split()[0])
+        phases, _ = run(display, mesh, [ours(0, 0), ours(1, 0), meshlab(3, 0), meshlab(0, 0)], timed=True)
+        for label, (name, secs, mib) in zip(labels, phases):
+            print(f"{faces:10d}  {label:48s} {secs:8.3f} {secs / (faces / 1e6):10.3f} {mib:8.1f}")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("what", nargs="*", default=["accuracy", "speed"])
+    ap.add_argument("--sizes", default="100000,1000000,4000000")
+    a = ap.parse_args()
+    for f in (SERVER, MAKE):
+        if not os.path.exists(f):
+            sys.exit(f"{f} missing: build first (scripts/build.sh)")
+    xv, display = start_xvfb()
+    try:
+        with tempfile.TemporaryDirectory() as tmp:
+            print(f"CPU threads: {os.cpu_count()}")
+            if "accuracy" in a.what:
+                accuracy(display, tmp)
+            if "speed" in a.what:
+                speed(display, tmp, [int(s) for s in a.sizes.split(",")])
+    finally:
+        xv.terminate()
+
+
+if __name__ == "__main__":
+    main()
