@@ -7,7 +7,14 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 src_root="$here/third_party"
 stamp="$src_root/.setup-done"
 
-need_root() { if [ "$(id -u)" -ne 0 ]; then echo "setup.sh: needs root (apt-get); run it with sudo" >&2; exit 1; fi; }
+# Root runs apt-get directly; another user goes through sudo.
+SUDO=""
+need_root() {
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo >/dev/null || { echo "setup.sh: installing packages needs root; run as root or install sudo" >&2; exit 1; }
+    SUDO="sudo"
+  fi
+}
 
 PKGS=(meshlab build-essential cmake ninja-build pkg-config dpkg-dev
       qtbase5-dev libqt5opengl5-dev libqt5xmlpatterns5-dev qtdeclarative5-dev libqt5svg5-dev
@@ -23,16 +30,16 @@ if [ ${#missing[@]} -gt 0 ] || [ ! -f "$stamp" ]; then
   need_root
   # deb-src entries, so that `apt-get source meshlab` finds the source package.
   if [ -f /etc/apt/sources.list.d/debian.sources ] && ! grep -q 'deb-src' /etc/apt/sources.list.d/debian.sources; then
-    sed -i 's/^Types: deb$/Types: deb deb-src/' /etc/apt/sources.list.d/debian.sources
+    $SUDO sed -i 's/^Types: deb$/Types: deb deb-src/' /etc/apt/sources.list.d/debian.sources
   fi
   if [ -f /etc/apt/sources.list ] && grep -q '^deb ' /etc/apt/sources.list && ! grep -q '^deb-src ' /etc/apt/sources.list; then
-    sed -n 's/^deb /deb-src /p' /etc/apt/sources.list >> /etc/apt/sources.list
+    sed -n 's/^deb /deb-src /p' /etc/apt/sources.list | $SUDO tee -a /etc/apt/sources.list >/dev/null
   fi
   export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
+  $SUDO apt-get update -qq
   if [ ${#missing[@]} -gt 0 ]; then
     echo "setup.sh: installing ${missing[*]}"
-    apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+    $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
   fi
 fi
 
@@ -42,7 +49,6 @@ srcdir="$src_root/meshlab-src"
 if [ -f "$srcdir/.debian-version" ] && [ "$(cat "$srcdir/.debian-version")" = "$installed" ]; then
   :
 else
-  need_root
   rm -rf "$src_root/apt-source" "$srcdir"; mkdir -p "$src_root/apt-source"
   ( cd "$src_root/apt-source" && apt-get source -qq "meshlab=$installed" >/dev/null 2>&1 ) || {
     echo "setup.sh: ERROR: 'apt-get source meshlab=$installed' failed." >&2

@@ -164,6 +164,41 @@ TEST(Curvature, MongePatchTensorJittered) {
   }
 }
 
+// With quartic terms the cubic fit is no longer exact: the tensor must still come out within
+// 10 % (median over jittered triangulations).
+TEST(Curvature, MongePatchTensorWithQuarticTermsJittered) {
+  MongeCase mc;
+  std::vector<double> worst;
+  for (uint32_t seed = 1; seed <= 9; ++seed) {
+    int o = -1;
+    TriMesh m = rktest::height_field(
+        [&](double x, double y) { return mc.z(x, y) + 2.0 * (x * x * x * x + x * x * y * y + y * y * y * y); }, 0.25,
+        100, 0.5, seed, &o);
+    Curvature c = compute_curvature(m);
+    CurvatureDerivative t = in_frame(c.dcurv[o], c.dir1[o], c.dir2[o], Vec3(1, 0, 0), Vec3(0, 1, 0));
+    worst.push_back(std::max({std::abs(t.a + mc.A) / std::abs(mc.A), std::abs(t.b + mc.B) / std::abs(mc.B),
+                              std::abs(t.c + mc.C) / std::abs(mc.C), std::abs(t.d + mc.D) / std::abs(mc.D)}));
+  }
+  EXPECT_LT(median(worst), 0.10);
+}
+
+TEST(Curvature, BoundaryVerticesOfAnOpenCylinder) {
+  const double r = 1.5;
+  TriMesh m = rktest::cylinder(r, 4, 200, 100, 0.3);
+  Curvature c = compute_curvature(m);
+  std::vector<double> e1, e2;
+  for (int i = 0; i < m.n_vertices(); ++i) {
+    if (std::abs(std::abs(m.vertices[i].z()) - 2) > 1e-9) continue;  // the two rims only
+    ASSERT_TRUE(std::isfinite(c.k1[i]) && std::isfinite(c.dcurv[i].a));
+    e1.push_back(std::abs(c.k1[i] - 1 / r) * r);
+    e2.push_back(std::abs(c.k2[i]) * r);
+  }
+  ASSERT_EQ(e1.size(), 400u);
+  EXPECT_LT(median(e1), 0.02);
+  EXPECT_LT(median(e2), 0.02);
+  EXPECT_TRUE(c.bad_vertices.empty());
+}
+
 TEST(Curvature, MongeTensorErrorFallsWithRefinement) {
   MongeCase mc;
   auto err = [&](int n) {
