@@ -220,82 +220,71 @@ constexpr int kBasisI[9] = {1, 0, 2, 1, 0, 3, 2, 1, 0};
 constexpr int kBasisJ[9] = {0, 1, 0, 1, 2, 0, 1, 2, 3};
 constexpr double kBasisC[9] = {1, 1, 0.5, 1, 0.5, 1.0 / 6, 0.5, 0.5, 1.0 / 6};
 
-// Moments S[i][j] = sum X^i Y^j (i + j <= 6) and T[i][j] = sum Z X^i Y^j (i + j <= 3) of the
-// neighbours in the frame (u, w, n). Each moment is a dot product over the neighbours, which
-// vectorises (AVX2 where the processor has it, by function multi-versioning). `scratch` holds
-// 17 m doubles.
+// Moments S[i][j] = sum X^i Y^j (i + j <= 6; row i, columns 0..7) and T[i][j] = sum Z X^i Y^j
+// (i + j <= 3) of the neighbours in the frame (u, w, n). Each row of S is accumulated as two
+// 4-wide vectors (X^i times the powers of Y), so the loop over neighbours keeps every sum in
+// registers; AVX2 where the processor has it (function multi-versioning).
+typedef double double4 __attribute__((vector_size(32)));
+
 __attribute__((target_clones("avx2", "default"))) void height_moments(const double* dx, const double* dy,
                                                                      const double* dz, int m, const double* frame,
-                                                                     double S[7][7], double T[4][4], double* scratch) {
-  double* X = scratch;      // m
-  double* Y = X + m;        // m
-  double* Z = Y + m;        // m
-  double* xp = Z + m;       // 7 m: X^i
-  double* yp = xp + 7 * m;  // 7 m: Y^j
+                                                                     double S[7][8], double T[4][4]) {
+  double4 s[7][2], t[4];
+  for (int i = 0; i < 7; ++i) s[i][0] = s[i][1] = double4{0, 0, 0, 0};
+  for (int i = 0; i < 4; ++i) t[i] = double4{0, 0, 0, 0};
   for (int k = 0; k < m; ++k) {
-    X[k] = dx[k] * frame[0] + dy[k] * frame[1] + dz[k] * frame[2];
-    Y[k] = dx[k] * frame[3] + dy[k] * frame[4] + dz[k] * frame[5];
-    Z[k] = dx[k] * frame[6] + dy[k] * frame[7] + dz[k] * frame[8];
-    xp[k] = 1;
-    yp[k] = 1;
+    const double X = dx[k] * frame[0] + dy[k] * frame[1] + dz[k] * frame[2];
+    const double Y = dx[k] * frame[3] + dy[k] * frame[4] + dz[k] * frame[5];
+    const double Z = dx[k] * frame[6] + dy[k] * frame[7] + dz[k] * frame[8];
+    const double Y2 = Y * Y, Y3 = Y2 * Y, Y4 = Y2 * Y2;
+    const double4 y0 = {1, Y, Y2, Y3}, y1 = {Y4, Y4 * Y, Y3 * Y3, 0};
+    double xi = 1;
+    for (int i = 0; i < 7; ++i) {
+      s[i][0] += xi * y0;
+      s[i][1] += xi * y1;
+      if (i < 4) t[i] += (Z * xi) * y0;
+      xi *= X;
+    }
   }
-  for (int i = 1; i < 7; ++i)
-    for (int k = 0; k < m; ++k) {
-      xp[i * m + k] = xp[(i - 1) * m + k] * X[k];
-      yp[i * m + k] = yp[(i - 1) * m + k] * Y[k];
-    }
-  for (int i = 0; i <= 6; ++i)
-    for (int j = 0; i + j <= 6; ++j) {
-      const double *a = xp + i * m, *b = yp + j * m;
-      double acc = 0;
-      for (int k = 0; k < m; ++k) acc += a[k] * b[k];
-      S[i][j] = acc;
-    }
-  for (int i = 0; i <= 3; ++i)
-    for (int j = 0; i + j <= 3; ++j) {
-      const double *a = xp + i * m, *b = yp + j * m;
-      double acc = 0;
-      for (int k = 0; k < m; ++k) acc += a[k] * b[k] * Z[k];
-      T[i][j] = acc;
-    }
+  for (int i = 0; i < 7; ++i)
+    for (int j = 0; j < 4; ++j) S[i][j] = s[i][0][j], S[i][4 + j] = s[i][1][j];
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) T[i][j] = t[i][j];
 }
 
 // Least-squares fit of z = sum_k x_k * basis_k over the neighbours with the first N basis
-// functions (N = 9: cubic, N = 5: quadratic), from the moments. False if singular.
+// functions (N = 9: cubic, N = 5: quadratic), from the moments, by an LDL^T factorisation of
+// the normal equations written out for fixed N (no square roots; Eigen's general solvers cost
+// more than the whole fit at this size). False if the system is singular.
 template <int N>
-bool solve_height(const double S[7][7], const double T[4][4], double* x) {
-  Eigen::Matrix<double, N, N> A;
-  Eigen::Matrix<double, N, 1> b;
+bool solve_height(const double S[7][8], const double T[4][4], double* x) {
+  double L[N][N], inv[N], b[N], y[N];
   for (int p = 0; p < N; ++p) {
-    for (int q = 0; q < N; ++q)
-      A(p, q) = kBasisC[p] * kBasisC[q] * S[kBasisI[p] + kBasisI[q]][kBasisJ[p] + kBasisJ[q]];
+    for (int q = 0; q <= p; ++q)
+      L[p][q] = kBasisC[p] * kBasisC[q] * S[kBasisI[p] + kBasisI[q]][kBasisJ[p] + kBasisJ[q]];
     b[p] = kBasisC[p] * T[kBasisI[p]][kBasisJ[p]];
   }
-  // Cholesky A = L L^T in place (lower triangle), then two triangular solves. Written out for
-  // fixed N: Eigen's general LLT costs more than the whole fit at this size.
-  for (int j = 0; j < N; ++j) {
-    double d = A(j, j);
-    for (int k = 0; k < j; ++k) d -= A(j, k) * A(j, k);
-    if (!(d > 1e-300)) return false;
-    d = std::sqrt(d);
-    A(j, j) = d;
-    const double id = 1 / d;
+  const double tiny = 1e-14 * (L[0][0] + L[1][1]);
+  for (int j = 0; j < N; ++j) {  // below the diagonal L[i][j] holds l_ij * d_j
+    double d = L[j][j];
+    for (int k = 0; k < j; ++k) d -= L[j][k] * L[j][k] * inv[k];
+    if (!(d > tiny)) return false;
+    inv[j] = 1 / d;
     for (int i = j + 1; i < N; ++i) {
-      double sum = A(i, j);
-      for (int k = 0; k < j; ++k) sum -= A(i, k) * A(j, k);
-      A(i, j) = sum * id;
+      double sum = L[i][j];
+      for (int k = 0; k < j; ++k) sum -= L[i][k] * L[j][k] * inv[k];
+      L[i][j] = sum;
     }
   }
-  double y[N];
   for (int i = 0; i < N; ++i) {
     double sum = b[i];
-    for (int k = 0; k < i; ++k) sum -= A(i, k) * y[k];
-    y[i] = sum / A(i, i);
+    for (int k = 0; k < i; ++k) sum -= L[i][k] * inv[k] * y[k];
+    y[i] = sum;
   }
   for (int i = N - 1; i >= 0; --i) {
-    double sum = y[i];
-    for (int k = i + 1; k < N; ++k) sum -= A(k, i) * x[k];
-    x[i] = sum / A(i, i);
+    double sum = y[i] * inv[i];
+    for (int k = i + 1; k < N; ++k) sum -= L[k][i] * inv[i] * x[k];
+    x[i] = sum;
   }
   for (int k = 0; k < N; ++k)
     if (!std::isfinite(x[k])) return false;
@@ -313,7 +302,7 @@ bool jet_at(const TriMesh& mesh, int v, const std::vector<int>& nb, std::vector<
             double& ku, double& kuv, double& kv, Vec3& u, Vec3& w, double C[4]) {
   const int m = std::min(static_cast<int>(nb.size()), kMaxNeighbours);  // one-ring comes first
   if (m < 6) return false;
-  buf.resize(20 * size_t(m));  // dx, dy, dz and the moments' scratch
+  buf.resize(3 * size_t(m));
   double *dx = buf.data(), *dy = dx + m, *dz = dy + m;
   const Vec3& p = mesh.vertices[v];
   double s2 = 0;
@@ -329,8 +318,8 @@ bool jet_at(const TriMesh& mesh, int v, const std::vector<int>& nb, std::vector<
   double x[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   Vec3 u0 = any_tangent(n), w0 = n.cross(u0);
   const double frame[9] = {u0.x(), u0.y(), u0.z(), w0.x(), w0.y(), w0.z(), n.x(), n.y(), n.z()};
-  double S[7][7], T[4][4];
-  height_moments(dx, dy, dz, m, frame, S, T, dz + m);
+  double S[7][8], T[4][4];
+  height_moments(dx, dy, dz, m, frame, S, T);
   const bool cubic = m >= 12;
   if (!(cubic ? solve_height<9>(S, T, x) : solve_height<5>(S, T, x))) return false;
   Vec3 nn = n - x[0] * u0 - x[1] * w0;
