@@ -207,6 +207,36 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
   return res;
 }
 
+// Copies the points used by the kept segments, renumbered.
+static Polylines subset(const Polylines& in, const std::vector<char>& keep_segment) {
+  Polylines out;
+  out.rejected_faces = in.rejected_faces;
+  std::vector<int> remap(in.points.size(), -1);
+  for (size_t k = 0; k < in.segments.size(); ++k) {
+    if (!keep_segment[k]) continue;
+    std::array<int, 2> s;
+    for (int e = 0; e < 2; ++e) {
+      int p = in.segments[k][e];
+      if (remap[p] < 0) {
+        remap[p] = static_cast<int>(out.points.size());
+        out.points.push_back(in.points[p]);
+        out.strength.push_back(in.strength[p]);
+      }
+      s[e] = remap[p];
+    }
+    out.segments.push_back(s);
+    out.segment_face.push_back(in.segment_face[k]);
+  }
+  return out;
+}
+
+Polylines keep_strong_segments(const Polylines& in, double min_strength) {
+  std::vector<char> keep(in.segments.size());
+  for (size_t k = 0; k < in.segments.size(); ++k)
+    keep[k] = 0.5 * (in.strength[in.segments[k][0]] + in.strength[in.segments[k][1]]) >= min_strength;
+  return subset(in, keep);
+}
+
 Polylines drop_short_chains(const Polylines& in, double min_length) {
   if (!(min_length > 0)) return in;
   std::vector<char> keep_point(in.points.size(), 0);
@@ -216,23 +246,10 @@ Polylines drop_short_chains(const Polylines& in, double min_length) {
     if (L >= min_length)
       for (int p : ch) keep_point[p] = 1;
   }
-  Polylines out;
-  out.rejected_faces = in.rejected_faces;
-  std::vector<int> remap(in.points.size(), -1);
-  for (size_t p = 0; p < in.points.size(); ++p)
-    if (keep_point[p]) {
-      remap[p] = static_cast<int>(out.points.size());
-      out.points.push_back(in.points[p]);
-      out.strength.push_back(in.strength[p]);
-    }
-  for (size_t k = 0; k < in.segments.size(); ++k) {
-    int a = remap[in.segments[k][0]], b = remap[in.segments[k][1]];
-    if (a >= 0 && b >= 0) {
-      out.segments.push_back({a, b});
-      out.segment_face.push_back(in.segment_face[k]);
-    }
-  }
-  return out;
+  std::vector<char> keep(in.segments.size());
+  for (size_t k = 0; k < in.segments.size(); ++k)
+    keep[k] = keep_point[in.segments[k][0]] && keep_point[in.segments[k][1]];
+  return subset(in, keep);
 }
 
 }  // namespace reliefkit

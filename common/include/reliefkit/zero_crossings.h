@@ -58,6 +58,9 @@ struct Polylines {
 Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& normals,
                                  const DirectionalField& field, const ZeroCrossingOptions& options = {});
 
+/// Keeps the segments whose strength (mean of their end points') reaches `min_strength`.
+Polylines keep_strong_segments(const Polylines& curves, double min_strength);
+
 /// Keeps only the chains at least `min_length` long (removes isolated short fragments).
 Polylines drop_short_chains(const Polylines& curves, double min_length);
 

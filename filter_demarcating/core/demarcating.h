@@ -1,0 +1,106 @@
+// ReliefKit — demarcating curves (thesis chapter 3; Kolomenkin, Shimshoni, Tal, "On edge
+// detection on surfaces", CVPR 2009 / "Demarcating curves for shape illustration", SIGGRAPH
+// Asia 2008) and mean-curvature shading for illustration (thesis section 3.6).
+//
+// Demarcating curves are the loci where the normal curvature in the curvature-gradient
+// direction g_p changes sign: k(g_p) = g_p^T II g_p = 0 (Definition 3.3.2), where g_p is the
+// unit tangent direction maximising C(v,v,v), the derivative of the normal curvature along v
+// (Definition 3.3.1, eq. 3.2). Their strength is C(g_p, g_p, g_p) > 0: the rate of the
+// convex-to-concave transition across the curve, in 1/length^2.
+#pragma once
+
+#include "reliefkit/curvature.h"
+#include "reliefkit/zero_crossings.h"
+
+namespace reliefkit {
+
+/// Per-vertex curvature gradient.
+struct CurvatureGradient {
+  std::vector<Vec3> direction;   // #V unit tangent g_p (a vector: its sign matters)
+  std::vector<double> kappa;     // #V k(g_p), 1/length
+  std::vector<double> strength;  // #V C(g_p, g_p, g_p) >= 0, 1/length^2
+  long long competing = 0;       // vertices with three maxima, resolved by the Gaussian rule
+};
+
+/// Gaussian width (radians) with which the angular function C(v(theta)) is smoothed when it has
+/// three maxima (thesis 3.3.2 leaves it open): pi / 8 halves the third harmonic and keeps 93 % of
+/// the first, so the maximum that agrees with the overall slope of the curvature wins.
+constexpr double kCompetingMaximaSigma = 0.39269908169872414;
+
+/// Angle theta of g_p in the principal frame, g_p = cos(theta) dir1 + sin(theta) dir2, by the
+/// closed form of eqs. 3.3-3.6 (a cubic in sin^2 theta). With three real roots, the three
+/// maxima compete: the function is smoothed with a Gaussian of width `sigma` and the maximum
+/// of C whose smoothed peak is highest is returned. `competing` (optional) tells which case.
+double curvature_gradient_angle(const CurvatureDerivative& C, double sigma = kCompetingMaximaSigma,
+                                bool* competing = nullptr);
+
+/// g_p, k(g_p) and strength at every vertex (in parallel).
+CurvatureGradient curvature_gradient(const Curvature& curvature);
+
+/// Median strength over the vertices: the scale of the mesh's own strength distribution.
+/// Strength thresholds relative to it are scale-free (the same relative threshold suits a coin
+/// in millimetres and a statue in metres, since both scale as 1/length^2).
+double median_strength(const CurvatureGradient& g);
+
+struct DemarcatingOptions {
+  double min_strength = 0;              // absolute strength threshold (1/length^2)
+  double max_angle = 0.78539816339744831;  // direction-consistency angle (pi/4, thesis 3.3.2)
+  double min_length = 0;                // drop curves shorter than this (mesh units)
+};
+
+/// The demarcating curves: zero crossings of k(g_p) along g_p (shared extraction, with the
+/// direction-consistency rule and sub-edge interpolation), point strength C(g_p, g_p, g_p).
+Polylines demarcating_curves(const TriMesh& mesh, const Curvature& curvature, const CurvatureGradient& gradient,
+                             const DemarcatingOptions& options);
+
+/// The whole method with the defaults users get from the filter. Lengths in mesh units; a
+/// negative value means "the default", derived from the mesh's mean edge length.
+/// The automatic strength threshold (scale-free; thesis 3.3.2 leaves the threshold to the user):
+///   max(kNoiseFactor x median vertex strength, kTopFactor x 99th percentile of the strength of
+///   all zero-crossing segments).
+/// The first term sits above the strength that scanner noise gives (noise crossings measured on
+/// synthetic reliefs with 10 % noise: median 1.5x, 99th percentile 2.5-3x the median vertex
+/// strength); the second drops curves weaker than a quarter of the strongest features, such as
+/// the gentle concave-to-convex transitions at the foot of a relief on a curved base.
+constexpr double kNoiseFactor = 2.0;
+constexpr double kTopFactor = 0.25;
+double automatic_strength_threshold(double median_vertex_strength, const Polylines& all_crossings);
+
+struct DemarcatingParams {
+  static constexpr double kDefaultRelativeThreshold = 1.0;  // x automatic threshold
+  static constexpr double kDefaultMinLengthEdges = 4.0;     // x mean edge length
+  static constexpr double kDefaultPresmoothingEdges = 1.0;  // x mean edge length
+  CurvatureEstimator estimator = CurvatureEstimator::Jet;
+  double presmoothing = -1;
+  double relative_threshold = kDefaultRelativeThreshold;
+  double min_length = -1;
+  double max_angle = 0.78539816339744831;
+  Progress progress = nullptr;
+};
+
+struct DemarcatingResult {
+  Curvature curvature;
+  CurvatureGradient gradient;
+  Polylines curves;
+  double mean_edge = 0;          // mesh's mean edge length
+  double presmoothing = 0;       // used, mesh units
+  double median_strength = 0;    // of the mesh's vertices, 1/length^2
+  double automatic_threshold = 0;  // automatic_strength_threshold(), 1/length^2
+  double threshold = 0;          // absolute strength threshold used = relative x automatic
+  double min_length = 0;         // used, mesh units
+};
+
+/// Curvature (with pre-smoothing), curvature gradient, curves above the threshold.
+/// Throws InputError for meshes require_triangles rejects.
+DemarcatingResult compute_demarcating(const TriMesh& mesh, const DemarcatingParams& params = {});
+
+/// Mean-curvature shading for illustration (thesis 3.6, fig. 3.11 e): grey level
+///   0.5 + atan(contrast * H / H_ref) / pi   in (0, 1),
+/// light on convex parts, dark on concave ones; H_ref is the median |H| of the mesh, so the
+/// contrast is scale-free.
+std::vector<double> mean_curvature_shading(const Curvature& curvature, double contrast);
+
+/// Multiplies by (1 - amount) the grey level of the vertices of the faces the curves cross.
+void darken_along_curves(const TriMesh& mesh, const Polylines& curves, double amount, std::vector<double>& grey);
+
+}  // namespace reliefkit

@@ -1,0 +1,122 @@
+#include "reliefs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+#include "shapes.h"
+
+namespace rktest {
+namespace {
+
+using reliefkit::Vec3;
+
+double step(double d, double w) { return 0.5 * (1 + std::tanh(d / w)); }
+
+void finish(Relief& r, const ReliefShape& s) {
+  r.mean_edge = reliefkit::edge_length_stats(r.mesh).mean;
+  if (s.noise > 0) {
+    Rng rng(s.seed * 7919 + 13);
+    for (size_t i = 0; i < r.mesh.vertices.size(); ++i)
+      r.mesh.vertices[i] += r.base_normal[i] * (s.noise * r.mean_edge * rng.normal());
+  }
+}
+
+// Distance from p to segment ab.
+double seg_dist(const Vec3& p, const Vec3& a, const Vec3& b) {
+  Vec3 ab = b - a;
+  double l2 = ab.squaredNorm();
+  double t = l2 > 0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * ab)).norm();
+}
+
+}  // namespace
+
+Relief disc_on_plane(const ReliefShape& s, int n) {
+  const double R0 = 0.5;
+  Relief r;
+  r.mesh = height_field([&](double x, double y) { return s.height * step(R0 - std::hypot(x, y), s.width); }, 1.0, n,
+                        s.jitter, s.seed);
+  r.base_normal.assign(r.mesh.vertices.size(), Vec3(0, 0, 1));
+  for (int k = 0; k < 4000; ++k) {
+    double a = 2 * M_PI * k / 4000;
+    r.boundary.emplace_back(R0 * std::cos(a), R0 * std::sin(a), 0.5 * s.height);
+  }
+  finish(r, s);
+  return r;
+}
+
+Relief disc_on_sphere(const ReliefShape& s, int levels) {
+  const double a0 = 0.5;
+  Relief r;
+  r.mesh = sphere(1.0, levels, s.jitter, s.seed);
+  for (auto& p : r.mesh.vertices) {
+    Vec3 n = p.normalized();
+    double ang = std::acos(std::clamp(n.z(), -1.0, 1.0));
+    r.base_normal.push_back(n);
+    p = n * (1 + s.height * step(a0 - ang, s.width));
+  }
+  for (int k = 0; k < 4000; ++k) {
+    double a = 2 * M_PI * k / 4000;
+    Vec3 n(std::sin(a0) * std::cos(a), std::sin(a0) * std::sin(a), std::cos(a0));
+    r.boundary.push_back(n * (1 + 0.5 * s.height));
+  }
+  finish(r, s);
+  return r;
+}
+
+Relief discs_on_cylinder(const ReliefShape& s) {
+  const double R = 1, R1 = 0.4, R2 = 0.3;
+  Relief r;
+  r.mesh = cylinder(R, 2, 400, 128, s.jitter, s.seed);
+  auto height = [&](double arc, double z) {
+    double d1 = std::hypot(arc, z), d2 = std::hypot(std::remainder(arc - M_PI * R, 2 * M_PI * R), z);
+    return s.height * step(R1 - d1, s.width) - s.height * step(R2 - d2, s.width);
+  };
+  for (auto& p : r.mesh.vertices) {
+    double u = std::atan2(p.y(), p.x());
+    Vec3 n(std::cos(u), std::sin(u), 0);
+    r.base_normal.push_back(n);
+    p += n * height(u * R, p.z());
+  }
+  for (int k = 0; k < 4000; ++k) {
+    double a = 2 * M_PI * k / 4000;
+    for (auto [rad, center, sign] : {std::tuple{R1, 0.0, 1.0}, std::tuple{R2, M_PI * R, -1.0}}) {
+      double arc = center + rad * std::cos(a), z = rad * std::sin(a), u = arc / R;
+      r.boundary.push_back(Vec3(std::cos(u), std::sin(u), 0) * (R + sign * 0.5 * s.height) + Vec3(0, 0, z));
+    }
+  }
+  finish(r, s);
+  return r;
+}
+
+Detection score(const Relief& r, const reliefkit::Polylines& c, double tol) {
+  Detection d{0, 0};
+  if (r.boundary.empty()) return d;
+  // Recall: boundary samples near some curve segment.
+  long near = 0;
+  for (const auto& b : r.boundary) {
+    bool hit = false;
+    for (size_t k = 0; k < c.segments.size() && !hit; ++k)
+      hit = seg_dist(b, c.points[c.segments[k][0]], c.points[c.segments[k][1]]) <= tol;
+    near += hit;
+  }
+  d.recall = double(near) / r.boundary.size();
+  // Precision: curve length (each segment sampled at 4 points) near the boundary samples.
+  double total = 0, good = 0;
+  for (const auto& s : c.segments) {
+    const Vec3 &a = c.points[s[0]], &b = c.points[s[1]];
+    double len = (b - a).norm();
+    for (int k = 0; k < 4; ++k) {
+      Vec3 p = a + (b - a) * ((k + 0.5) / 4);
+      double best = 1e300;
+      for (const auto& q : r.boundary) best = std::min(best, (p - q).squaredNorm());
+      total += len / 4;
+      if (std::sqrt(best) <= tol) good += len / 4;
+    }
+  }
+  d.precision = total > 0 ? good / total : 0;
+  return d;
+}
+
+}  // namespace rktest
