@@ -15,6 +15,41 @@ void write_vertex_attribute(CMeshO& m, const View& v, const char* name, const st
   for (size_t i = 0; i < v.vertex_of.size() && i < values.size(); ++i) h[v.vertex_of[i]] = Scalarm(values[i]);
 }
 
+MeshModel* add_curve_layer(MeshDocument& doc, const QString& label, const Polylines& curves, vcg::Color4b color) {
+  MeshModel* layer = doc.addNewMesh("", label, false);
+  CMeshO& cm = layer->cm;
+  layer->updateDataMask(MeshModel::MM_VERTCOLOR | MeshModel::MM_VERTQUALITY);
+  if (!curves.points.empty()) {
+    auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(cm, curves.points.size());
+    for (size_t i = 0; i < curves.points.size(); ++i, ++vi) {
+      const Vec3& p = curves.points[i];
+      vi->P() = Point3m(Scalarm(p.x()), Scalarm(p.y()), Scalarm(p.z()));
+      vi->Q() = float(curves.strength[i]);
+      vi->C() = color;
+    }
+    auto ei = vcg::tri::Allocator<CMeshO>::AddEdges(cm, curves.segments.size());
+    for (size_t k = 0; k < curves.segments.size(); ++k, ++ei) {
+      ei->V(0) = &cm.vert[curves.segments[k][0]];
+      ei->V(1) = &cm.vert[curves.segments[k][1]];
+    }
+  }
+  vcg::tri::UpdateBounding<CMeshO>::Box(cm);
+  return layer;
+}
+
+QString derived_label(const MeshModel& m, const QString& what) {
+  QString name = m.label();
+  int dot = name.lastIndexOf('.');
+  if (dot > 0) name = name.left(dot);
+  return name + QString::fromUtf8(" \u2013 ") + what;
+}
+
+void write_vertex_vectors(CMeshO& m, const View& v, const char* name, const std::vector<Vec3>& values) {
+  auto h = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<Point3m>(m, std::string(name));
+  for (size_t i = 0; i < v.vertex_of.size() && i < values.size(); ++i)
+    h[v.vertex_of[i]] = Point3m(Scalarm(values[i].x()), Scalarm(values[i].y()), Scalarm(values[i].z()));
+}
+
 double mean_edge_length(MeshModel& m) {
   double sum = 0;
   long long n = 0;

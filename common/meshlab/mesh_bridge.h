@@ -8,6 +8,7 @@
 
 #include "reliefkit/mesh.h"
 #include "reliefkit/vcg_adapter.h"
+#include "reliefkit/zero_crossings.h"
 
 namespace reliefkit::ml {
 
@@ -20,6 +21,18 @@ View view_of(MeshModel& m);
 /// Writes a named per-vertex float attribute (created if missing, overwritten if present).
 /// Vertices not in the view keep their old value.
 void write_vertex_attribute(CMeshO& m, const View& v, const char* name, const std::vector<double>& values);
+
+/// Adds a new layer holding `curves` as an edge mesh: one vertex per curve point (on the
+/// surface), one edge per segment, vertex quality = point strength, vertices coloured `color`.
+/// The layer is not made current, so later filters of a script still act on the surface.
+MeshModel* add_curve_layer(MeshDocument& doc, const QString& label, const Polylines& curves,
+                           vcg::Color4b color = vcg::Color4b(0, 0, 0, 255));
+
+/// "<mesh name> – <what>": the label of a layer derived from `m` (file extension dropped).
+QString derived_label(const MeshModel& m, const QString& what);
+
+/// Writes a named per-vertex Point3 attribute.
+void write_vertex_vectors(CMeshO& m, const View& v, const char* name, const std::vector<Vec3>& values);
 
 /// Mean edge length of the layer (for parameter defaults), or a fraction of the bounding box
 /// diagonal when the layer has no faces.

@@ -201,7 +201,7 @@ double automatic_strength_threshold(double median_vertex_strength, const Polylin
   for (const auto& sg : all.segments) st.push_back(0.5 * (all.strength[sg[0]] + all.strength[sg[1]]));
   double top = 0;
   if (!st.empty()) {
-    auto k = st.begin() + static_cast<long>(0.99 * double(st.size() - 1));
+    auto k = st.begin() + static_cast<long>(kTopPercentile * double(st.size() - 1));
     std::nth_element(st.begin(), k, st.end());
     top = *k;
   }
@@ -244,9 +244,9 @@ std::vector<double> mean_curvature_shading(const Curvature& c, double contrast) 
   }
   double ref = 1;
   if (!absh.empty()) {
-    auto mid = absh.begin() + absh.size() / 2;
-    std::nth_element(absh.begin(), mid, absh.end());
-    if (*mid > 0) ref = *mid;
+    auto k = absh.begin() + static_cast<long>(0.9 * double(absh.size() - 1));
+    std::nth_element(absh.begin(), k, absh.end());
+    if (*k > 0) ref = *k;
   }
   for (auto& x : h) x = std::isfinite(x) ? 0.5 + std::atan(contrast * x / ref) / kPi : 0.5;
   return h;

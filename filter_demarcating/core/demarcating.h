@@ -56,14 +56,17 @@ Polylines demarcating_curves(const TriMesh& mesh, const Curvature& curvature, co
 /// The whole method with the defaults users get from the filter. Lengths in mesh units; a
 /// negative value means "the default", derived from the mesh's mean edge length.
 /// The automatic strength threshold (scale-free; thesis 3.3.2 leaves the threshold to the user):
-///   max(kNoiseFactor x median vertex strength, kTopFactor x 99th percentile of the strength of
-///   all zero-crossing segments).
-/// The first term sits above the strength that scanner noise gives (noise crossings measured on
+///   max(kNoiseFactor x median vertex strength,
+///       kTopFactor x 90th percentile of the strength of all zero-crossing segments).
+/// The first term sits above the strength scanner noise gives (noise crossings measured on
 /// synthetic reliefs with 10 % noise: median 1.5x, 99th percentile 2.5-3x the median vertex
-/// strength); the second drops curves weaker than a quarter of the strongest features, such as
-/// the gentle concave-to-convex transitions at the foot of a relief on a curved base.
+/// strength). The second matters on clean surfaces, where the first is near zero: it drops
+/// curves weaker than a quarter of the strong ones, such as the gentle concave-to-convex
+/// transitions at the foot of a relief on a curved base. A 99th percentile was tried first: on
+/// the coin scan the rim then set the scale and the lettering vanished.
 constexpr double kNoiseFactor = 2.0;
 constexpr double kTopFactor = 0.25;
+constexpr double kTopPercentile = 0.90;
 double automatic_strength_threshold(double median_vertex_strength, const Polylines& all_crossings);
 
 struct DemarcatingParams {
@@ -96,8 +99,10 @@ DemarcatingResult compute_demarcating(const TriMesh& mesh, const DemarcatingPara
 
 /// Mean-curvature shading for illustration (thesis 3.6, fig. 3.11 e): grey level
 ///   0.5 + atan(contrast * H / H_ref) / pi   in (0, 1),
-/// light on convex parts, dark on concave ones; H_ref is the median |H| of the mesh, so the
-/// contrast is scale-free.
+/// light on convex parts, dark on concave ones. H_ref is the 90th percentile of |H| over the
+/// vertices: the curvature of the mesh's most curved tenth (its relief) maps to a quarter of the
+/// grey range on either side of mid-grey at contrast 1, whatever the scale. (The median was tried
+/// first: on a clean surface it is near zero and flat parts came out grey-white.)
 std::vector<double> mean_curvature_shading(const Curvature& curvature, double contrast);
 
 /// Multiplies by (1 - amount) the grey level of the vertices of the faces the curves cross.

@@ -1,0 +1,171 @@
+#include "demarcating_filters.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "demarcating.h"
+#include "mesh_bridge.h"
+
+namespace reliefkit::ml {
+namespace {
+
+const char* kCitation =
+    "M. Kolomenkin, I. Shimshoni, A. Tal, <b>\"Demarcating curves for shape illustration\"</b>, "
+    "ACM Transactions on Graphics 27(5) (SIGGRAPH Asia 2008); thesis chapter 3.";
+
+const char* kDemarcatingInfo =
+    "Draws <b>demarcating curves</b>: the lines where a relief turns from concave to convex most "
+    "steeply — the outlines of raised letters, figures and decorations on coins, seals, lamps and "
+    "inscriptions, the way an archaeological illustrator would draw them. They do not depend on the "
+    "viewpoint.<br><br>"
+    "<b>Output</b>: a new layer <i>&lt;mesh&gt; – demarcating curves</i> holding the curves as "
+    "edges (vertex quality = curve strength; save it as OBJ to keep the edges). On the scanned mesh, "
+    "optionally, per-vertex attributes <code>demarcating_kappa</code> (the curvature across the "
+    "curve direction), <code>demarcating_strength</code> and <code>demarcating_direction</code>.<br><br>"
+    "<b>Strength threshold</b>: curves weaker than this are dropped. 1 is automatic: above the "
+    "strength scanner noise gives and at least a quarter of the strongest features; it works the "
+    "same whatever the size or unit of the scan. Use 0.5 for more, fainter lines; 2 for only the "
+    "boldest.<br><br>"
+    "Method: at every vertex the direction g in which curvature changes fastest (curvature "
+    "gradient) is found in closed form from the curvature-derivative tensor; curves are the zero "
+    "crossings of the curvature in that direction. ";
+
+const char* kShadingInfo =
+    "Grey-level <b>mean-curvature shading</b> for illustration: convex parts light, concave parts "
+    "dark, as in archaeological drawings (thesis section 3.6). With <i>Darken along demarcating "
+    "curves</i> the demarcating curves are drawn into the shading, so curves and shading read "
+    "together.<br><br>"
+    "<b>Output</b>: vertex colours (grey = 0.5 + atan(contrast &middot; H / H<sub>90</sub>) / "
+    "&pi;, where H is the mean curvature and H<sub>90</sub> the 90th percentile of its magnitude on this mesh), "
+    "and vertex quality = the grey level (0..1).<br><br>";
+
+void common_parameters(MeshModel& m, RichParameterList& par) {
+  double h = mean_edge_length(m);
+  double diag = m.cm.bbox.Diag() > 0 ? m.cm.bbox.Diag() : 1.0;
+  par.addParam(RichFloat("threshold", float(DemarcatingParams::kDefaultRelativeThreshold), "Strength threshold",
+                         "Keeps curves at least this strong, relative to the automatic threshold (1). Smaller "
+                         "values show fainter lines (and more noise), larger values only the boldest outlines."));
+  par.addParam(RichAbsPerc("presmoothing", float(DemarcatingParams::kDefaultPresmoothingEdges * h), 0.f,
+                           float(diag / 10), "Pre-smoothing scale",
+                           "Removes scanner noise smaller than this distance before measuring curvature (a "
+                           "Gaussian scale, in the mesh's units). Default: the mean edge length. 0 turns it off."));
+}
+
+DemarcatingParams read_params(const RichParameterList& par, vcg::CallBackPos* cb) {
+  DemarcatingParams p;
+  p.relative_threshold = std::max(0.f, par.getFloat("threshold"));
+  p.presmoothing = std::max(0.f, par.getAbsPerc("presmoothing"));
+  p.progress = cb;
+  return p;
+}
+
+void demarcating_parameters(MeshModel& m, RichParameterList& par) {
+  common_parameters(m, par);
+  par.addParam(RichFloat("min_length", float(DemarcatingParams::kDefaultMinLengthEdges), "Minimum curve length",
+                         "Drops curve pieces shorter than this many edge lengths (specks of noise). 0 keeps all."));
+  par.addParam(RichBool("per_vertex", true, "Write per-vertex results",
+                        "Also store, on this mesh, the curvature across the curve direction, the strength and "
+                        "the direction at every vertex (attributes demarcating_kappa, demarcating_strength, "
+                        "demarcating_direction)."));
+  par.addParam(RichBool("quality", false, "Vertex quality = curvature across",
+                        "Also put the curvature in the curve-crossing direction into vertex quality (it is zero "
+                        "on the curves; Colorize by vertex quality shows where the relief is convex or concave)."));
+}
+
+void apply_demarcating(FilterCall& call) {
+  auto t0 = std::chrono::steady_clock::now();
+  View view = view_of(call.mesh);
+  DemarcatingParams p = read_params(call.params, call.progress);
+  double h = edge_length_stats(view.mesh).mean;
+  p.min_length = std::max(0.f, call.params.getFloat("min_length")) * h;
+  DemarcatingResult r = compute_demarcating(view.mesh, p);
+
+  const QString label = derived_label(call.mesh, "demarcating curves");
+  add_curve_layer(call.doc, label, r.curves);
+  if (call.params.getBool("per_vertex")) {
+    write_vertex_attribute(call.mesh.cm, view, "demarcating_kappa", r.gradient.kappa);
+    write_vertex_attribute(call.mesh.cm, view, "demarcating_strength", r.gradient.strength);
+    write_vertex_vectors(call.mesh.cm, view, "demarcating_direction", r.gradient.direction);
+  }
+  if (call.params.getBool("quality")) {
+    call.mesh.updateDataMask(MeshModel::MM_VERTQUALITY);
+    for (size_t i = 0; i < view.vertex_of.size(); ++i) view.vertex_of[i]->Q() = float(r.gradient.kappa[i]);
+  }
+  double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double len = r.curves.total_length();
+  call.log(QString("Demarcating curves: %1 segments in %2 curves, length %3 (%4 mean edge lengths per 1,000 faces), "
+                   "layer \"%5\"; %6 s.")
+               .arg(thousands(static_cast<long long>(r.curves.segments.size())))
+               .arg(thousands(static_cast<long long>(r.curves.chains().size())))
+               .arg(len, 0, 'g', 5)
+               .arg(h > 0 ? 1000.0 * len / h / view.mesh.n_faces() : 0.0, 0, 'f', 1)
+               .arg(label)
+               .arg(secs, 0, 'f', 3));
+  call.log(QString("Strength threshold %1 x automatic = %2 (median vertex strength %3; units 1/length^2); "
+                   "pre-smoothing %4, minimum length %5; %6 vertices resolved among three competing maxima.")
+               .arg(p.relative_threshold, 0, 'g', 3)
+               .arg(r.threshold, 0, 'g', 4)
+               .arg(r.median_strength, 0, 'g', 4)
+               .arg(r.presmoothing, 0, 'g', 4)
+               .arg(r.min_length, 0, 'g', 4)
+               .arg(thousands(r.gradient.competing)));
+}
+
+void shading_parameters(MeshModel& m, RichParameterList& par) {
+  par.addParam(RichFloat("contrast", 1.0f, "Contrast",
+                         "How strongly curvature is turned into light and dark. At 1 the curvature of the "
+                         "mesh's most curved tenth (its relief) gives three-quarter light or dark; larger "
+                         "values exaggerate faint details."));
+  par.addParam(RichBool("darken", true, "Darken along demarcating curves",
+                        "Draws the demarcating curves into the shading (the vertices next to them are darkened)."));
+  par.addParam(RichFloat("darkness", 0.6f, "Curve darkness",
+                         "How much the curves darken the shading: 0 not at all, 1 black."));
+  common_parameters(m, par);
+}
+
+void apply_shading(FilterCall& call) {
+  View view = view_of(call.mesh);
+  DemarcatingParams p = read_params(call.params, call.progress);
+  DemarcatingResult r = compute_demarcating(view.mesh, p);
+  std::vector<double> grey = mean_curvature_shading(r.curvature, call.params.getFloat("contrast"));
+  const bool darken = call.params.getBool("darken");
+  if (darken) darken_along_curves(view.mesh, r.curves, call.params.getFloat("darkness"), grey);
+  call.mesh.updateDataMask(MeshModel::MM_VERTCOLOR | MeshModel::MM_VERTQUALITY);
+  for (size_t i = 0; i < view.vertex_of.size(); ++i) {
+    auto g = static_cast<unsigned char>(std::lround(255 * std::clamp(grey[i], 0.0, 1.0)));
+    view.vertex_of[i]->C() = vcg::Color4b(g, g, g, 255);
+    view.vertex_of[i]->Q() = float(grey[i]);
+  }
+  call.log(QString("Curvature shading of %1 vertices (contrast %2)%3.")
+               .arg(thousands(view.mesh.n_vertices()))
+               .arg(call.params.getFloat("contrast"), 0, 'g', 3)
+               .arg(darken ? QString(", darkened along %1 demarcating-curve segments")
+                                 .arg(thousands(static_cast<long long>(r.curves.segments.size())))
+                           : QString()));
+}
+
+}  // namespace
+
+FilterSpec demarcating_curves_filter(int id) {
+  return FilterSpec{id,
+                    "Demarcating Curves",
+                    QString(kDemarcatingInfo) + kCitation,
+                    MeshFilterInterface::FilterClass(MeshFilterInterface::Normal | MeshFilterInterface::Layer),
+                    MeshModel::MM_NONE,
+                    MeshModel::MM_VERTQUALITY,
+                    demarcating_parameters,
+                    apply_demarcating};
+}
+
+FilterSpec curvature_shading_filter(int id) {
+  return FilterSpec{id,
+                    "Curvature Shading",
+                    QString(kShadingInfo) + "Method: " + kCitation,
+                    MeshFilterInterface::VertexColoring,
+                    MeshModel::MM_NONE,
+                    MeshModel::MM_VERTCOLOR | MeshModel::MM_VERTQUALITY,
+                    shading_parameters,
+                    apply_shading};
+}
+
+}  // namespace reliefkit::ml

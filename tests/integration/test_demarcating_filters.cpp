@@ -1,0 +1,152 @@
+// "Demarcating Curves" and "Curvature Shading" through the real meshlabserver.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "mesh_files.h"
+#include "reliefs.h"
+#include "server.h"
+#include "shapes.h"
+
+using namespace rktest;
+
+namespace {
+
+std::string demarcating_filter(double threshold = 1, double presmoothing = -1, double min_length = 4,
+                               bool per_vertex = true, bool quality = false) {
+  return mlx_filter("Demarcating Curves",
+                    {param_float("threshold", threshold), param_absperc("presmoothing", presmoothing),
+                     param_float("min_length", min_length), param_bool("per_vertex", per_vertex),
+                     param_bool("quality", quality)});
+}
+
+std::string shading_filter(double presmoothing, bool darken = true) {
+  return mlx_filter("Curvature Shading", {param_float("contrast", 1), param_bool("darken", darken),
+                                          param_float("darkness", 0.6), param_float("threshold", 1),
+                                          param_absperc("presmoothing", presmoothing)});
+}
+
+}  // namespace
+
+TEST(DemarcatingFilter, CurveLayerLiesOnTheStep) {
+  ReliefShape s;
+  s.noise = 0.1;
+  Relief r = disc_on_plane(s, 120);
+  std::string dir = temp_dir("demarcating_plane");
+  write_ply(dir + "/in.ply", r.mesh);
+  write_text(dir + "/s.mlx", mlx_script({demarcating_filter(1, r.mean_edge)}));
+  ServerRun run = run_meshlabserver({"-i", dir + "/in.ply", "-o", dir + "/curves.obj", "-l", "1", "-s", dir + "/s.mlx"});
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("in \u2013 demarcating curves"), std::string::npos) << run.output;
+  MeshFile curves = read_mesh(dir + "/curves.obj");
+  ASSERT_GT(curves.edges.size(), 100u);
+  reliefkit::Polylines p;
+  p.points = curves.mesh.vertices;
+  p.strength.assign(p.points.size(), 1);
+  p.segments = curves.edges;
+  Detection d = score(r, p, r.mean_edge);
+  EXPECT_GE(d.recall, 0.85);
+  EXPECT_GE(d.precision, 0.80);
+}
+
+TEST(DemarcatingFilter, ShadingIsLightOnTheShoulderDarkAtTheFoot) {
+  Relief r = disc_on_plane({}, 120);
+  std::string dir = temp_dir("shading_plane");
+  write_ply(dir + "/in.ply", r.mesh);
+  write_text(dir + "/s.mlx", mlx_script({shading_filter(r.mean_edge, false)}));
+  ServerRun run =
+      run_meshlabserver({"-i", dir + "/in.ply", "-o", dir + "/out.ply", "-m", "vc", "-s", dir + "/s.mlx"});
+  ASSERT_EQ(run.status, 0) << run.output;
+  MeshFile out = read_mesh(dir + "/out.ply");
+  const auto& red = out.vertex_props["red"];
+  ASSERT_EQ(red.size(), out.mesh.vertices.size());
+  double shoulder = 0, foot = 0, flat = 0;
+  int ns = 0, nf = 0, nflat = 0;
+  for (size_t i = 0; i < red.size(); ++i) {
+    double rad = std::hypot(out.mesh.vertices[i].x(), out.mesh.vertices[i].y());
+    if (std::abs(rad - 0.47) < 0.01) shoulder += red[i], ++ns;  // convex (R0 - ~w)
+    if (std::abs(rad - 0.53) < 0.01) foot += red[i], ++nf;      // concave (R0 + ~w)
+    if (rad < 0.2) flat += red[i], ++nflat;
+  }
+  ASSERT_GT(ns, 10);
+  ASSERT_GT(nf, 10);
+  EXPECT_GT(shoulder / ns, 160);
+  EXPECT_LT(foot / nf, 95);
+  EXPECT_NEAR(flat / nflat, 127.5, 10);
+}
+
+TEST(DemarcatingFilter, MainJobScriptOnTheCoin) {
+  std::string dir = temp_dir("coin_demarcating");
+  ServerRun run = run_meshlabserver({"-i", std::string(RELIEFKIT_SOURCE_DIR) + "/examples/data/penny.ply", "-o",
+                                     dir + "/shaded.ply", "-l", "0", "-m", "vc", "-o", dir + "/curves.obj", "-l",
+                                     "1", "-s", std::string(RELIEFKIT_SOURCE_DIR) + "/examples/demarcating_shading.mlx"});
+  ASSERT_EQ(run.status, 0) << run.output;
+  MeshFile curves = read_mesh(dir + "/curves.obj");
+  MeshFile shaded = read_mesh(dir + "/shaded.ply");
+  EXPECT_GT(curves.edges.size(), 1000u);
+  ASSERT_EQ(shaded.vertex_props["red"].size(), 49977u);
+  // Every curve point lies on the coin (within its bounding box).
+  reliefkit::Vec3 lo = shaded.mesh.vertices[0], hi = lo;
+  for (const auto& p : shaded.mesh.vertices) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  for (const auto& p : curves.mesh.vertices)
+    ASSERT_TRUE((p.array() >= lo.array() - 1e-3).all() && (p.array() <= hi.array() + 1e-3).all());
+}
+
+// ---- bad input, both filters ----
+
+class DemarcatingBadInput : public ::testing::TestWithParam<int> {
+ protected:
+  ServerRun run(const std::string& name, const reliefkit::TriMesh& m) {
+    std::string dir = temp_dir(name + std::to_string(GetParam()));
+    write_ply(dir + "/in.ply", m);
+    std::string f = GetParam() == 0 ? demarcating_filter(1, 0.05) : shading_filter(0.05);
+    write_text(dir + "/s.mlx", mlx_script({f}));
+    return run_meshlabserver({"-i", dir + "/in.ply", "-o", dir + "/out.ply", "-m", "vc", "-s", dir + "/s.mlx"});
+  }
+};
+
+TEST_P(DemarcatingBadInput, PointCloud) {
+  reliefkit::TriMesh m = sphere(1, 2);
+  m.faces.clear();
+  ServerRun r = run("pointcloud", m);
+  EXPECT_FALSE(r.crashed) << r.output;
+  EXPECT_NE(r.output.find("point cloud"), std::string::npos) << r.output;
+}
+
+TEST_P(DemarcatingBadInput, EmptyMesh) {
+  ServerRun r = run("empty", reliefkit::TriMesh{});
+  EXPECT_FALSE(r.crashed) << r.output;
+  EXPECT_NE(r.output.find("empty mesh"), std::string::npos) << r.output;
+}
+
+TEST_P(DemarcatingBadInput, NaNCoordinates) {
+  reliefkit::TriMesh m = sphere(1, 3);
+  m.vertices[3].z() = std::numeric_limits<double>::quiet_NaN();
+  ServerRun r = run("nan", m);
+  EXPECT_FALSE(r.crashed) << r.output;
+  EXPECT_NE(r.output.find("NaN"), std::string::npos) << r.output;
+}
+
+TEST_P(DemarcatingBadInput, NonManifoldAndDegenerateFaces) {
+  Relief rel = disc_on_plane({}, 60);
+  reliefkit::TriMesh m = rel.mesh;
+  m.vertices.push_back({0, 0, 1});
+  m.faces.push_back({m.faces[10][0], m.faces[10][1], m.n_vertices() - 1});  // non-manifold edge
+  m.faces.push_back({5, 5, 6});                                              // repeated vertex
+  m.vertices.push_back(m.vertices[7]);
+  m.faces.push_back({7, m.n_vertices() - 1, 7});  // zero area
+  m.vertices.push_back({9, 9, 9});                // isolated vertex
+  ServerRun r = run("nonmanifold", m);
+  EXPECT_FALSE(r.crashed) << r.output;
+  EXPECT_EQ(r.status, 0) << r.output;
+}
+
+TEST_P(DemarcatingBadInput, FlatPlaneHasNoCurves) {
+  reliefkit::TriMesh m = height_field([](double, double) { return 0.0; }, 1.0, 30, 0.3);
+  ServerRun r = run("flat", m);
+  EXPECT_FALSE(r.crashed) << r.output;
+  EXPECT_EQ(r.status, 0) << r.output;
+}
+
+INSTANTIATE_TEST_SUITE_P(BothFilters, DemarcatingBadInput, ::testing::Values(0, 1));
