@@ -8,7 +8,10 @@ speed:    synthetic relief tori of ~100 K, 1 M and 4 M faces; one meshlabserver 
           MeshLab Taubin on the same mesh; wall time of each filter (from the time stamps of the
           "filter:" lines meshlabserver prints) and peak RSS growth during it (sampled every 2 ms).
 
-Usage: bench/compare_meshlab.py [accuracy] [speed] [--sizes 100000,1000000,4000000]
+demarcating: the whole "Demarcating Curves" filter (defaults) on the 1 M and 4 M meshes, next to
+          MeshLab's Pseudoinverse Quadric Fitting in the same process.
+
+Usage: bench/compare_meshlab.py [accuracy] [speed] [demarcating] [--sizes 100000,1000000,4000000]
 Needs a build (scripts/build.sh). Runs its own Xvfb.
 """
 import argparse
@@ -46,8 +49,21 @@ def meshlab(method, quality):  # method 0 Taubin, 3 PQF; quality 2 writes K1, 3 
                       '<Param type="RichBool" name="Autoclean" value="false"/>'])
 
 
+def demarcating(presmoothing):
+    return ("Demarcating Curves", ['<Param type="RichFloat" name="threshold" value="1"/>',
+                                   f'<Param type="RichAbsPerc" name="presmoothing" value="{presmoothing}" min="0" max="1e9"/>',
+                                   '<Param type="RichFloat" name="min_length" value="4"/>',
+                                   '<Param type="RichBool" name="per_vertex" value="true"/>',
+                                   '<Param type="RichBool" name="quality" value="false"/>'])
+
+
 SENTINEL = ("Select None", ['<Param type="RichBool" name="allFaces" value="true"/>',
                             '<Param type="RichBool" name="allVerts" value="true"/>'])
+
+
+# meshlabserver sets up a GL context and rendering data before every filter; a trivial filter
+# run first measures that share of each filter's time.
+OVERHEAD = "(meshlabserver per-filter set-up: Select None)"
 
 
 def script(filters):
@@ -104,7 +120,7 @@ def median(v):
 
 def run(display, mesh, filters, out=None, timed=False):
     with tempfile.NamedTemporaryFile("w", suffix=".mlx", delete=False) as f:
-        f.write(script(filters + ([SENTINEL] if timed else [])))
+        f.write(script(([SENTINEL] if timed else []) + filters + ([SENTINEL] if timed else [])))
         mlx = f.name
     cmd = ["stdbuf", "-oL", SERVER, "-i", mesh, "-s", mlx] + (["-o", out, "-m", "vq"] if out else [])
     env = dict(os.environ, DISPLAY=display)
@@ -180,22 +196,34 @@ def accuracy(display, tmp):
 def speed(display, tmp, sizes):
     print("Speed inside meshlabserver (same process, same mesh): wall time and peak RSS growth")
     print(f"{'faces':>10s}  {'filter':48s} {'time s':>8s} {'s/M faces':>10s} {'+MiB':>8s}")
-    labels = ["ReliefKit jet fit: curvature + derivatives", "ReliefKit per-face fit: curvature + derivatives",
+    labels = [OVERHEAD, "ReliefKit jet fit: curvature + derivatives", "ReliefKit per-face fit: curvature + derivatives",
               "MeshLab Pseudoinverse Quadric Fitting", "MeshLab Taubin approximation"]
     for n in sizes:
         mesh = os.path.join(tmp, f"relief{n}.ply")
-        subprocess.run([MAKE, "relief-torus", str(n), mesh], check=True)
-        with open(mesh, "rb") as f:
-            head = f.read(400).decode(errors="ignore")
-        faces = int(head.split("element face ")[1].split()[0])
+        out = subprocess.run([MAKE, "relief-torus", str(n), mesh], check=True, capture_output=True, text=True).stdout
+        faces = int(out.split()[1])
         phases, _ = run(display, mesh, [ours(0, 0), ours(1, 0), meshlab(3, 0), meshlab(0, 0)], timed=True)
+        for label, (name, secs, mib) in zip(labels, phases):
+            print(f"{faces:10d}  {label:48s} {secs:8.3f} {secs / (faces / 1e6):10.3f} {mib:8.1f}")
+
+
+def demarcating_speed(display, tmp, sizes):
+    print("Demarcating Curves (filter defaults) inside meshlabserver, next to MeshLab's Pseudoinverse Quadric "
+          "Fitting on the same mesh in the same process")
+    print(f"{'faces':>10s}  {'filter':48s} {'time s':>8s} {'s/M faces':>10s} {'+MiB':>8s}")
+    labels = [OVERHEAD, "ReliefKit Demarcating Curves (whole filter)", "MeshLab Pseudoinverse Quadric Fitting"]
+    for n in sizes:
+        mesh = os.path.join(tmp, f"relief{n}.ply")
+        out = subprocess.run([MAKE, "relief-torus", str(n), mesh], check=True, capture_output=True, text=True).stdout
+        faces, edge = int(out.split()[1]), float(out.split()[3])
+        phases, _ = run(display, mesh, [demarcating(edge), meshlab(3, 0)], timed=True)
         for label, (name, secs, mib) in zip(labels, phases):
             print(f"{faces:10d}  {label:48s} {secs:8.3f} {secs / (faces / 1e6):10.3f} {mib:8.1f}")
 
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("what", nargs="*", default=["accuracy", "speed"])
+    ap.add_argument("what", nargs="*", default=["accuracy", "speed", "demarcating"])
     ap.add_argument("--sizes", default="100000,1000000,4000000")
     a = ap.parse_args()
     for f in (SERVER, MAKE):
@@ -209,6 +237,8 @@ def main():
                 accuracy(display, tmp)
             if "speed" in a.what:
                 speed(display, tmp, [int(s) for s in a.sizes.split(",")])
+            if "demarcating" in a.what:
+                demarcating_speed(display, tmp, [int(s) for s in a.sizes.split(",") if int(s) >= 1000000])
     finally:
         xv.terminate()
 

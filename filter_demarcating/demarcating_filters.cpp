@@ -76,7 +76,7 @@ void apply_demarcating(FilterCall& call) {
   auto t0 = std::chrono::steady_clock::now();
   View view = view_of(call.mesh);
   DemarcatingParams p = read_params(call.params, call.progress);
-  double h = edge_length_stats(view.mesh).mean;
+  const double h = reliefkit::mean_edge_length(view.mesh);
   p.min_length = std::max(0.f, call.params.getFloat("min_length")) * h;
   DemarcatingResult r = compute_demarcating(view.mesh, p);
 

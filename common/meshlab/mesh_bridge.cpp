@@ -12,7 +12,9 @@ View view_of(MeshModel& m) {
 
 void write_vertex_attribute(CMeshO& m, const View& v, const char* name, const std::vector<double>& values) {
   auto h = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<Scalarm>(m, std::string(name));
-  for (size_t i = 0; i < v.vertex_of.size() && i < values.size(); ++i) h[v.vertex_of[i]] = Scalarm(values[i]);
+  const long n = static_cast<long>(std::min(v.vertex_of.size(), values.size()));
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) h[v.vertex_of[i]] = Scalarm(values[i]);
 }
 
 MeshModel* add_curve_layer(MeshDocument& doc, const QString& label, const Polylines& curves, vcg::Color4b color) {
@@ -46,7 +48,9 @@ QString derived_label(const MeshModel& m, const QString& what) {
 
 void write_vertex_vectors(CMeshO& m, const View& v, const char* name, const std::vector<Vec3>& values) {
   auto h = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<Point3m>(m, std::string(name));
-  for (size_t i = 0; i < v.vertex_of.size() && i < values.size(); ++i)
+  const long n = static_cast<long>(std::min(v.vertex_of.size(), values.size()));
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i)
     h[v.vertex_of[i]] = Point3m(Scalarm(values[i].x()), Scalarm(values[i].y()), Scalarm(values[i].z()));
 }
 

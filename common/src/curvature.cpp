@@ -404,8 +404,10 @@ Curvature compute_curvature(const TriMesh& input, const CurvatureOptions& opt) {
   TriMesh smoothed;
   if (opt.smoothing_scale > 0) {
     report(opt.progress, 5, "Pre-smoothing");
-    smoothed.faces = input.faces;
-    smoothed.vertices = input.vertices;
+    sized(smoothed.faces, input.faces.size());
+    std::copy(input.faces.begin(), input.faces.end(), smoothed.faces.begin());
+    sized(smoothed.vertices, input.vertices.size(), Vec3(Vec3::Zero()));
+    std::copy(input.vertices.begin(), input.vertices.end(), smoothed.vertices.begin());
     diffuse(input, vertex_rings(input, vf), opt.smoothing_scale, smoothed.vertices);
   }
   const TriMesh& mesh = opt.smoothing_scale > 0 ? smoothed : input;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "reliefkit/memory.h"
+
 namespace reliefkit {
 
 int diffusion_steps(const TriMesh& mesh, double scale) {
@@ -26,7 +28,8 @@ template <class T>
 static void diffuse_impl(const TriMesh& mesh, const VertexRing& ring, double scale, std::vector<T>& x) {
   int steps = diffusion_steps(mesh, scale);
   const int nv = mesh.n_vertices();
-  std::vector<T> y(x.size());
+  std::vector<T> y;
+  sized(y, x.size(), x.empty() ? T() : x[0]);
   for (int s = 0; s < steps; ++s) {
 #pragma omp parallel for schedule(static)
     for (int v = 0; v < nv; ++v) {

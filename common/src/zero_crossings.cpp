@@ -75,14 +75,33 @@ std::vector<std::vector<int>> Polylines::chains() const {
   return out;
 }
 
+DirectionalFieldView view_of(const DirectionalField& f) {
+  DirectionalFieldView v;
+  v.direction = f.direction.data();
+  v.value = f.value.data();
+  v.strength = f.strength.empty() ? nullptr : f.strength.data();
+  v.size = f.direction.size();
+  v.axial = f.axial;
+  v.value_along = f.value_along;
+  v.strength_along = f.strength_along;
+  return v;
+}
+
 Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& normals,
                                  const DirectionalField& field, const ZeroCrossingOptions& opt) {
+  if (field.value.size() != field.direction.size() ||
+      (!field.strength.empty() && field.strength.size() != field.direction.size()))
+    throw InputError("zero-crossing extraction: per-vertex fields do not match the mesh");
+  return extract_zero_crossings(mesh, normals, view_of(field), opt);
+}
+
+Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& normals,
+                                 const DirectionalFieldView& field, const ZeroCrossingOptions& opt) {
   const int nv = mesh.n_vertices(), nf = mesh.n_faces();
-  if ((int)normals.size() != nv || (int)field.direction.size() != nv || (int)field.value.size() != nv ||
-      (!field.strength.empty() && (int)field.strength.size() != nv) || !field.value_along)
+  if ((int)normals.size() != nv || (int)field.size != nv || !field.direction || !field.value || !field.value_along)
     throw InputError("zero-crossing extraction: per-vertex fields do not match the mesh");
   const double cos_max = std::cos(opt.max_angle);
-  const bool has_strength = !field.strength.empty();
+  const bool has_strength = field.strength != nullptr;
 
   int nthreads = 1;
 #ifdef _OPENMP

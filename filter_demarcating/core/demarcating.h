@@ -29,10 +29,14 @@ constexpr double kCompetingMaximaSigma = 0.39269908169872414;
 
 /// Angle theta of g_p in the principal frame, g_p = cos(theta) dir1 + sin(theta) dir2, by the
 /// closed form of eqs. 3.3-3.6 (a cubic in sin^2 theta). With three real roots, the three
-/// maxima compete: the function is smoothed with a Gaussian of width `sigma` and the maximum
-/// of C whose smoothed peak is highest is returned. `competing` (optional) tells which case.
+/// maxima compete: the function is smoothed with a Gaussian of width `sigma` (a trigonometric
+/// polynomial again, whose maxima come from the same closed form) and the maximum of C nearest
+/// to the smoothed function's global maximum is returned. `competing` (optional) tells which.
 double curvature_gradient_angle(const CurvatureDerivative& C, double sigma = kCompetingMaximaSigma,
                                 bool* competing = nullptr);
+/// The same as the unit vector (cos theta, sin theta), computed without trigonometric calls.
+Vec2 curvature_gradient_direction(const CurvatureDerivative& C, double sigma = kCompetingMaximaSigma,
+                                  bool* competing = nullptr);
 
 /// g_p, k(g_p) and strength at every vertex (in parallel).
 CurvatureGradient curvature_gradient(const Curvature& curvature);

@@ -18,7 +18,9 @@ int main(int argc, char** argv) {
                              std::atof(argv[6]), std::atoi(argv[7]));
       rktest::write_ply(argv[8], m);
     } else if (kind == "relief-torus" && argc == 4) {
-      rktest::write_ply(argv[3], rktest::relief_torus(std::atol(argv[2])));
+      auto m = rktest::relief_torus(std::atol(argv[2]));
+      rktest::write_ply(argv[3], m);
+      std::printf("faces %d mean_edge %.9g\n", m.n_faces(), reliefkit::mean_edge_length(m));
     } else if (kind == "sphere" && argc == 6) {
       rktest::write_ply(argv[5], rktest::sphere(std::atof(argv[2]), std::atoi(argv[3]), std::atof(argv[4])));
     } else {

@@ -43,6 +43,8 @@ struct EdgeStats {
   long long count = 0;  // counted once per face side (interior edges twice)
 };
 EdgeStats edge_length_stats(const TriMesh& mesh);
+/// Mean edge length only (parallel, no sorting): the length scale of parameter defaults.
+double mean_edge_length(const TriMesh& mesh);
 
 /// Checks a mesh before a curvature computation. Throws InputError when the mesh has no
 /// faces (empty mesh or point cloud), a face refers to a missing vertex, or a coordinate is

@@ -36,6 +36,18 @@ struct DirectionalField {
   std::function<double(int, const Vec3&)> strength_along;
 };
 
+/// The same field, borrowed: pointers to #V arrays owned elsewhere (no copies of large arrays).
+struct DirectionalFieldView {
+  const Vec3* direction = nullptr;
+  const double* value = nullptr;
+  const double* strength = nullptr;  // may be null
+  size_t size = 0;
+  bool axial = false;
+  std::function<double(int, const Vec3&)> value_along;
+  std::function<double(int, const Vec3&)> strength_along;
+};
+DirectionalFieldView view_of(const DirectionalField& field);
+
 struct ZeroCrossingOptions {
   double max_angle = 0.78539816339744831;  // pi/4 (thesis 3.3.2)
   double min_strength = -std::numeric_limits<double>::infinity();
@@ -55,6 +67,8 @@ struct Polylines {
 };
 
 /// Throws InputError if the field's sizes do not match the mesh.
+Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& normals,
+                                 const DirectionalFieldView& field, const ZeroCrossingOptions& options = {});
 Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& normals,
                                  const DirectionalField& field, const ZeroCrossingOptions& options = {});
 
