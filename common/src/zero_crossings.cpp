@@ -24,6 +24,7 @@ struct Crossing {
   uint64_t key;  // undirected edge
   Vec3 p;
   double s;
+  double w;      // position on the edge: (1 - w) a + w b, a < b
   int slot;      // index of the owning segment * 2 + end
 };
 
@@ -179,10 +180,12 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
         c.key = (uint64_t(a) << 32) | b;
         c.p = (1 - w) * mesh.vertices[f[p]] + w * mesh.vertices[f[q]];
         c.s = (1 - w) * str[p] + w * str[q];
+        c.w = w;
         ++found;
       }
       if (found != 2) continue;
       if (0.5 * (cr[0].s + cr[1].s) < opt.min_strength) continue;
+      if (opt.accept_face && !opt.accept_face(fi, val, t)) continue;
       int seg = static_cast<int>(sf.size());
       cr[0].slot = seg * 2;
       cr[1].slot = seg * 2 + 1;
@@ -220,6 +223,8 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
     int id = static_cast<int>(res.points.size());
     res.points.push_back(p / double(j - i));
     res.strength.push_back(s / double(j - i));
+    res.point_edge.push_back({int(all[i].key >> 32), int(all[i].key & 0xffffffffu)});
+    res.point_weight.push_back(all[i].w);
     for (size_t k = i; k < j; ++k) res.segments[all[k].slot / 2][all[k].slot % 2] = id;
     i = j;
   }
@@ -240,12 +245,47 @@ static Polylines subset(const Polylines& in, const std::vector<char>& keep_segme
         remap[p] = static_cast<int>(out.points.size());
         out.points.push_back(in.points[p]);
         out.strength.push_back(in.strength[p]);
+        if (!in.point_edge.empty()) {
+          out.point_edge.push_back(in.point_edge[p]);
+          out.point_weight.push_back(in.point_weight[p]);
+        }
       }
       s[e] = remap[p];
     }
     out.segments.push_back(s);
     out.segment_face.push_back(in.segment_face[k]);
   }
+  return out;
+}
+
+double automatic_curve_threshold(double noise_scale, const Polylines& all) {
+  std::vector<double> st;
+  st.reserve(all.segments.size());
+  for (const auto& sg : all.segments) st.push_back(0.5 * (all.strength[sg[0]] + all.strength[sg[1]]));
+  double top = 0;
+  if (!st.empty()) {
+    auto k = st.begin() + static_cast<long>(kTopPercentile * double(st.size() - 1));
+    std::nth_element(st.begin(), k, st.end());
+    top = *k;
+  }
+  return std::max(kNoiseFactor * noise_scale, kTopFactor * top);
+}
+
+double median_positive(const std::vector<double>& values) {
+  std::vector<double> s;
+  s.reserve(values.size());
+  for (double x : values)
+    if (std::isfinite(x) && x > 0) s.push_back(x);
+  if (s.empty()) return 0;
+  auto mid = s.begin() + s.size() / 2;
+  std::nth_element(s.begin(), mid, s.end());
+  return *mid;
+}
+
+std::vector<double> interpolate_at_points(const Polylines& c, const std::vector<double>& f) {
+  std::vector<double> out(c.points.size(), 0.0);
+  for (size_t i = 0; i < c.points.size() && i < c.point_edge.size(); ++i)
+    out[i] = (1 - c.point_weight[i]) * f[c.point_edge[i][0]] + c.point_weight[i] * f[c.point_edge[i][1]];
   return out;
 }
 

@@ -200,16 +200,7 @@ CurvatureGradient curvature_gradient(const Curvature& c) {
   return g;
 }
 
-double median_strength(const CurvatureGradient& g) {
-  std::vector<double> s;
-  s.reserve(g.strength.size());
-  for (double x : g.strength)
-    if (std::isfinite(x) && x > 0) s.push_back(x);
-  if (s.empty()) return 0;
-  auto mid = s.begin() + s.size() / 2;
-  std::nth_element(s.begin(), mid, s.end());
-  return *mid;
-}
+double median_strength(const CurvatureGradient& g) { return median_positive(g.strength); }
 
 Polylines demarcating_curves(const TriMesh& mesh, const Curvature& c, const CurvatureGradient& g,
                              const DemarcatingOptions& opt) {
@@ -226,19 +217,6 @@ Polylines demarcating_curves(const TriMesh& mesh, const Curvature& c, const Curv
   zo.min_strength = opt.min_strength;
   Polylines p = extract_zero_crossings(mesh, c.normal, field, zo);
   return opt.min_length > 0 ? drop_short_chains(p, opt.min_length) : p;
-}
-
-double automatic_strength_threshold(double median_vertex_strength, const Polylines& all) {
-  std::vector<double> st;
-  st.reserve(all.segments.size());
-  for (const auto& sg : all.segments) st.push_back(0.5 * (all.strength[sg[0]] + all.strength[sg[1]]));
-  double top = 0;
-  if (!st.empty()) {
-    auto k = st.begin() + static_cast<long>(kTopPercentile * double(st.size() - 1));
-    std::nth_element(st.begin(), k, st.end());
-    top = *k;
-  }
-  return std::max(kNoiseFactor * median_vertex_strength, kTopFactor * top);
 }
 
 DemarcatingResult compute_demarcating(const TriMesh& mesh, const DemarcatingParams& p) {
@@ -261,7 +239,7 @@ DemarcatingResult compute_demarcating(const TriMesh& mesh, const DemarcatingPara
   o.min_strength = 0;
   o.max_angle = p.max_angle;
   Polylines all = demarcating_curves(mesh, r.curvature, r.gradient, o);
-  r.automatic_threshold = automatic_strength_threshold(r.median_strength, all);
+  r.automatic_threshold = automatic_curve_threshold(r.median_strength, all);
   r.threshold = p.relative_threshold * r.automatic_threshold;
   r.curves = drop_short_chains(keep_strong_segments(all, r.threshold), r.min_length);
   return r;

@@ -59,20 +59,8 @@ Polylines demarcating_curves(const TriMesh& mesh, const Curvature& curvature, co
 
 /// The whole method with the defaults users get from the filter. Lengths in mesh units; a
 /// negative value means "the default", derived from the mesh's mean edge length.
-/// The automatic strength threshold (scale-free; thesis 3.3.2 leaves the threshold to the user):
-///   max(kNoiseFactor x median vertex strength,
-///       kTopFactor x 90th percentile of the strength of all zero-crossing segments).
-/// The first term sits above the strength scanner noise gives (noise crossings measured on
-/// synthetic reliefs with 10 % noise: median 1.5x, 99th percentile 2.5-3x the median vertex
-/// strength). The second matters on clean surfaces, where the first is near zero: it drops
-/// curves weaker than a quarter of the strong ones, such as the gentle concave-to-convex
-/// transitions at the foot of a relief on a curved base. A 99th percentile was tried first: on
-/// the coin scan the rim then set the scale and the lettering vanished.
-constexpr double kNoiseFactor = 2.0;
-constexpr double kTopFactor = 0.25;
-constexpr double kTopPercentile = 0.90;
-double automatic_strength_threshold(double median_vertex_strength, const Polylines& all_crossings);
-
+/// The automatic strength threshold is reliefkit::automatic_curve_threshold() (zero_crossings.h)
+/// with the median vertex strength as noise scale.
 struct DemarcatingParams {
   static constexpr double kDefaultRelativeThreshold = 1.0;  // x automatic threshold
   static constexpr double kDefaultMinLengthEdges = 4.0;     // x mean edge length
@@ -92,7 +80,7 @@ struct DemarcatingResult {
   double mean_edge = 0;          // mesh's mean edge length
   double presmoothing = 0;       // used, mesh units
   double median_strength = 0;    // of the mesh's vertices, 1/length^2
-  double automatic_threshold = 0;  // automatic_strength_threshold(), 1/length^2
+  double automatic_threshold = 0;  // automatic_curve_threshold(median strength, all crossings)
   double threshold = 0;          // absolute strength threshold used = relative x automatic
   double min_length = 0;         // used, mesh units
 };
