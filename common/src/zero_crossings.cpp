@@ -231,8 +231,7 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
   return res;
 }
 
-// Copies the points used by the kept segments, renumbered.
-static Polylines subset(const Polylines& in, const std::vector<char>& keep_segment) {
+Polylines select_segments(const Polylines& in, const std::vector<char>& keep_segment) {
   Polylines out;
   out.rejected_faces = in.rejected_faces;
   std::vector<int> remap(in.points.size(), -1);
@@ -293,7 +292,7 @@ Polylines keep_strong_segments(const Polylines& in, double min_strength) {
   std::vector<char> keep(in.segments.size());
   for (size_t k = 0; k < in.segments.size(); ++k)
     keep[k] = 0.5 * (in.strength[in.segments[k][0]] + in.strength[in.segments[k][1]]) >= min_strength;
-  return subset(in, keep);
+  return select_segments(in, keep);
 }
 
 Polylines drop_short_chains(const Polylines& in, double min_length) {
@@ -308,7 +307,7 @@ Polylines drop_short_chains(const Polylines& in, double min_length) {
   std::vector<char> keep(in.segments.size());
   for (size_t k = 0; k < in.segments.size(); ++k)
     keep[k] = keep_point[in.segments[k][0]] && keep_point[in.segments[k][1]];
-  return subset(in, keep);
+  return select_segments(in, keep);
 }
 
 }  // namespace reliefkit

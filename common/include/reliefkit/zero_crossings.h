@@ -97,6 +97,9 @@ double automatic_curve_threshold(double noise_scale, const Polylines& all_crossi
 /// Median of the positive finite values (0 if none).
 double median_positive(const std::vector<double>& values);
 
+/// Keeps the segments k with keep[k] != 0 (and the points they use).
+Polylines select_segments(const Polylines& curves, const std::vector<char>& keep);
+
 /// Keeps the segments whose strength (mean of their end points') reaches `min_strength`.
 Polylines keep_strong_segments(const Polylines& curves, double min_strength);
 

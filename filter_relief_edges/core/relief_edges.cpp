@@ -1,0 +1,217 @@
+#include "relief_edges.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "reliefkit/cubic_form.h"
+#include "reliefkit/memory.h"
+#include "reliefkit/smoothing.h"
+
+namespace reliefkit {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kA = 5 * kPi / 8, kB = kPi / 8;  // eq. 4.19
+const double kCosMaxTurn = std::cos(kPi / 4);
+
+double median_edge_length(const TriMesh& m) { return edge_length_stats(m).median; }
+
+// The edge direction maximising the correlation inside the window |theta - base| <= w
+// (eqs. 4.15-4.17): the maxima inside the window and the window's ends are the candidates.
+Vec2 restricted_direction(const CubicHarmonics& h, const Vec2* maxima, int n, const Vec2& base, double cos_w,
+                          double sin_w) {
+  Vec2 best(0, 0);
+  double best_f = -1e300;
+  auto take = [&](const Vec2& v) {
+    double f = h.f(v.x(), v.y());
+    if (f > best_f) best_f = f, best = v;
+  };
+  for (int i = 0; i < n; ++i)
+    if (maxima[i].dot(base) >= cos_w) take(maxima[i]);
+  take(Vec2(base.x() * cos_w - base.y() * sin_w, base.y() * cos_w + base.x() * sin_w));
+  take(Vec2(base.x() * cos_w + base.y() * sin_w, base.y() * cos_w - base.x() * sin_w));
+  return best;
+}
+
+}  // namespace
+
+CurvatureDerivative edge_correlation_form(const CurvatureDerivative& C) {
+  return {C.a * kA + 3 * C.c * kB, (3 * C.b + C.d) * kB, (3 * C.c + C.a) * kB, C.d * kA + 3 * C.b * kB};
+}
+
+double edge_fit_error(const CurvatureDerivative& C, double k1, double k2, double f, double radius) {
+  const double a1 = C.a, a2 = C.b, a3 = C.c, a4 = C.d;
+  const double s1 = kA * (a1 * a1 + a4 * a4) + 9 * kB * (a2 * a2 + a3 * a3) + 6 * kB * (a1 * a3 + a2 * a4);
+  const double s2 = 0.75 * kPi * (k1 * k1 + k2 * k2) + 0.5 * kPi * k1 * k2;
+  const double norm = s1 + 12 * s2 / (radius * radius);
+  if (!(norm > 0)) return 1;
+  return std::clamp(1 - f * f / kA / norm, 0.0, 1.0);
+}
+
+ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParams& p) {
+  require_triangles(mesh);
+  ReliefEdgeResult r;
+  r.mean_edge = mean_edge_length(mesh);
+  const double h = r.mean_edge;
+  r.presmoothing = p.presmoothing >= 0 ? p.presmoothing : ReliefEdgeParams::kDefaultPresmoothingEdges * h;
+  r.base_scale = p.base_scale > 0 ? p.base_scale : ReliefEdgeParams::kDefaultBaseScaleEdges * h;
+  r.edge_smoothing =
+      p.edge_smoothing >= 0 ? p.edge_smoothing : ReliefEdgeParams::kDefaultEdgeSmoothing * median_edge_length(mesh);
+  r.min_length = p.min_length >= 0 ? p.min_length : ReliefEdgeParams::kDefaultMinLengthEdges * h;
+  const double radius = p.fit_radius > 0 ? p.fit_radius : ReliefEdgeParams::kDefaultFitRadiusEdges * h;
+
+  CurvatureOptions co;
+  co.estimator = p.estimator;
+  co.smoothing_scale = r.presmoothing;
+  co.progress = p.progress;
+  r.curvature = compute_curvature(mesh, co);
+  const Curvature& c = r.curvature;
+  const int nv = mesh.n_vertices();
+
+  if (p.progress) p.progress(60, "Base normals");
+  BaseNormalOptions bo;
+  bo.scale = r.base_scale;
+  r.base = estimate_base_normals(mesh, c.normal, bo);
+
+  if (p.progress) p.progress(80, "Edge directions");
+  // Unrestricted best direction, base direction and the angle between them.
+  std::vector<Vec2> best(nv), base(nv);
+  std::vector<char> strong_base(nv, 0);
+  sized(r.angle, size_t(nv));
+#pragma omp parallel for schedule(static)
+  for (int v = 0; v < nv; ++v) {
+    const Vec3& n = c.normal[v];
+    const Vec3& nb = r.base.normal[v];
+    r.angle[v] = std::acos(std::clamp(n.dot(nb), -1.0, 1.0));
+    Vec3 proj = nb - n * n.dot(nb);  // points up the relief's slope
+    Vec2 b(proj.dot(c.dir1[v]), proj.dot(c.dir2[v]));
+    double bl = b.norm();
+    base[v] = bl > 0 ? Vec2(b / bl) : Vec2(1, 0);
+    strong_base[v] = r.angle[v] > p.weak_angle && bl > 0;
+    Vec2 m[3];
+    int k = cubic_form_maxima(edge_correlation_form(c.dcurv[v]), m);
+    if (k == 0) {
+      best[v] = base[v];
+      continue;
+    }
+    CubicHarmonics hh(edge_correlation_form(c.dcurv[v]));
+    int bi = 0;
+    for (int i = 1; i < k; ++i)
+      if (hh.f(m[i].x(), m[i].y()) > hh.f(m[bi].x(), m[bi].y())) bi = i;
+    best[v] = m[bi];
+  }
+  // Window w: the RMS angle between the unrestricted direction and the base direction, over the
+  // vertices where the base direction is meaningful (thesis: the standard deviation of that
+  // error's histogram).
+  double sum2 = 0;
+  long cnt = 0;
+  for (int v = 0; v < nv; ++v)
+    if (strong_base[v]) {
+      double d = std::acos(std::clamp(best[v].dot(base[v]), -1.0, 1.0));
+      sum2 += d * d;
+      ++cnt;
+    }
+  r.window = std::clamp(cnt > 0 ? std::sqrt(sum2 / cnt) : kPi, 10 * kPi / 180, kPi);
+  const double cos_w = std::cos(r.window), sin_w = std::sin(r.window);
+
+  sized(r.direction, size_t(nv), Vec3(Vec3::Zero()));
+  sized(r.G, size_t(nv));
+  sized(r.alpha, size_t(nv));
+  sized(r.fit_error, size_t(nv));
+  std::vector<Vec2> g2(nv);
+#pragma omp parallel for schedule(static)
+  for (int v = 0; v < nv; ++v) {
+    const CurvatureDerivative form = edge_correlation_form(c.dcurv[v]);
+    const CubicHarmonics hh(form);
+    Vec2 g = best[v];
+    if (p.restrict_orientation && strong_base[v] && r.window < kPi) {
+      Vec2 m[3];
+      int k = cubic_form_maxima(form, m);
+      g = restricted_direction(hh, m, k, base[v], cos_w, sin_w);
+    }
+    const double f = hh.f(g.x(), g.y());
+    r.alpha[v] = f / kA;
+    r.fit_error[v] = edge_fit_error(c.dcurv[v], c.k1[v], c.k2[v], f, radius);
+    g2[v] = g;
+    r.G[v] = c.k1[v] * g.x() * g.x() + c.k2[v] * g.y() * g.y();
+  }
+
+  // Edge smoothing (eq. 4.18): smooth G, then recover directions giving the smoothed value,
+  // nearest to the current ones; where none exists, the nearest value.
+  if (r.edge_smoothing > 0) {
+    if (p.progress) p.progress(88, "Edge smoothing");
+    VertexFaces vf = vertex_faces(mesh);
+    VertexRing ring = vertex_rings(mesh, vf);
+    std::vector<double> Gs = r.G;
+    diffuse(mesh, ring, r.edge_smoothing, Gs);
+#pragma omp parallel for schedule(static)
+    for (int v = 0; v < nv; ++v) {
+      const double k1 = c.k1[v], k2 = c.k2[v];
+      Vec2 g = g2[v];
+      if (k1 - k2 > 1e-12 * (std::abs(k1) + std::abs(k2))) {
+        double c2 = std::clamp((Gs[v] - k2) / (k1 - k2), 0.0, 1.0);
+        double cs = std::sqrt(c2), sn = std::sqrt(1 - c2);
+        Vec2 cand(std::copysign(cs, g.x()), std::copysign(sn, g.y()));  // the candidate nearest g
+        // Where the smoothed value is out of reach the nearest direction is a principal one,
+        // which can be far from g; a turn of more than the consistency angle would break the
+        // curve there, so such vertices keep their direction.
+        if (cand.dot(g) >= kCosMaxTurn || (Gs[v] >= k2 && Gs[v] <= k1)) {
+          g = cand;
+          r.G[v] = k1 * c2 + k2 * (1 - c2);
+        }
+      }
+      g2[v] = g;
+    }
+  }
+#pragma omp parallel for schedule(static)
+  for (int v = 0; v < nv; ++v) r.direction[v] = g2[v].x() * c.dir1[v] + g2[v].y() * c.dir2[v];
+
+  // Relief edge points: zeros of G along g; strength = angle between surface and base normal.
+  if (p.progress) p.progress(93, "Relief edge points");
+  DirectionalFieldView f;
+  f.direction = r.direction.data();
+  f.value = r.G.data();
+  f.strength = r.angle.data();
+  f.size = size_t(nv);
+  f.axial = false;
+  f.value_along = [&c](int v, const Vec3& t) { return c.normal_curvature(v, t); };
+  Polylines all = extract_zero_crossings(mesh, c.normal, f, ZeroCrossingOptions{});
+
+  // Hysteresis thresholds on the angle: automatic from the crossings (the same rule as for
+  // demarcating curves, scale-free since angles are), the weak one half the strong one.
+  r.strong_angle = p.strong_angle > 0 ? p.strong_angle
+                                      : std::max(p.weak_angle, automatic_curve_threshold(median_positive(r.angle), all));
+  r.weak_angle = p.weak_angle_h > 0 ? p.weak_angle_h : std::max(0.5 * r.strong_angle, 0.5 * p.weak_angle);
+  std::vector<double> err = interpolate_at_points(all, r.fit_error);
+  const size_t ns = all.segments.size();
+  std::vector<char> strong(ns), weak(ns);
+  for (size_t k = 0; k < ns; ++k) {
+    const auto& s = all.segments[k];
+    double e = 0.5 * (err[s[0]] + err[s[1]]), a = 0.5 * (all.strength[s[0]] + all.strength[s[1]]);
+    strong[k] = e <= p.strong_error && a >= r.strong_angle;
+    weak[k] = e <= p.weak_error && a >= r.weak_angle;
+  }
+  // Grow from strong segments through weak ones sharing curve points.
+  std::vector<std::vector<int>> at_point(all.points.size());
+  for (size_t k = 0; k < ns; ++k)
+    for (int e = 0; e < 2; ++e) at_point[all.segments[k][e]].push_back(int(k));
+  std::vector<char> keep(ns, 0);
+  std::vector<int> stack;
+  for (size_t k = 0; k < ns; ++k)
+    if (strong[k] && !keep[k]) {
+      keep[k] = 1;
+      stack.push_back(int(k));
+      while (!stack.empty()) {
+        int s = stack.back();
+        stack.pop_back();
+        for (int e = 0; e < 2; ++e)
+          for (int o : at_point[all.segments[s][e]])
+            if (!keep[o] && (weak[o] || strong[o])) keep[o] = 1, stack.push_back(o);
+      }
+    }
+  Polylines kept = select_segments(all, keep);
+  r.edges = drop_short_chains(kept, r.min_length);
+  return r;
+}
+
+}  // namespace reliefkit

@@ -1,0 +1,66 @@
+// ReliefKit — relief edges (thesis chapter 4; Kolomenkin, Shimshoni, Tal, "On edge detection on
+// surfaces", CVPR 2009).
+//
+// A scanned relief is a smooth base B carrying a local image I along the base normal (eq. 4.1);
+// relief edges are the edges of that image. At every vertex a smoothed step edge
+// E = alpha/6 (c u + s v)^3 is fitted to the local Monge form; its direction maximises the
+// correlation <E1(theta), S1> = c^3 C1 + 3c^2 s C2 + 3c s^2 C3 + s^3 C4 (eq. 4.13, Appendix A),
+// alpha = <E1, S1> / ||E1||^2 (eq. 4.14). The orientation is restricted to a window around the
+// direction the base normal gives (eqs. 4.15-4.17); G = g^T II g (g perpendicular to the edge)
+// is Gaussian-smoothed and directions are recovered from it (eq. 4.18); relief edge points are
+// the zeros of G (Definition 4.3.1), kept by a two-dimensional hysteresis on the model-fit error
+// (eq. 4.7 normalised by ||S||^2) and the edge strength, the angle between surface and base
+// normal (1 / (n . n_base) grows with it).
+#pragma once
+
+#include "base_normals.h"
+#include "reliefkit/curvature.h"
+#include "reliefkit/zero_crossings.h"
+
+namespace reliefkit {
+
+/// C1..C4 of eq. 4.13 from the derivative tensor (a1..a4) = (a, b, c, d), with A = 5 pi / 8 and
+/// B = pi / 8 (eq. 4.19): C1 = a1 A + 3 a3 B, C2 = (3 a2 + a4) B, C3 = (3 a3 + a1) B,
+/// C4 = a4 A + 3 a2 B. Returned as a cubic form, so cubic_form_maxima() finds its maxima.
+CurvatureDerivative edge_correlation_form(const CurvatureDerivative& C);
+
+/// Fit error of eq. 4.7 at the optimum, normalised by ||S||^2, for correlation f = <E1, S1>:
+///   1 - (f^2 / A) / (||S1||^2 + 12 ||S2||^2 / R^2),
+/// where S1 is the cubic and S2 the quadratic part of the Monge form and R the radius of the
+/// neighbourhood the error is integrated over (the radial integrals give the 12 / R^2). In [0, 1]:
+/// 0 for a perfect step edge.
+double edge_fit_error(const CurvatureDerivative& C, double k1, double k2, double f, double radius);
+
+struct ReliefEdgeParams {
+  static constexpr double kDefaultPresmoothingEdges = 1.0;   // x mean edge length
+  static constexpr double kDefaultBaseScaleEdges = 15.0;     // x mean edge length
+  static constexpr double kDefaultEdgeSmoothing = 0.8;       // x median edge length (thesis 4.4)
+  static constexpr double kDefaultMinLengthEdges = 4.0;      // x mean edge length
+  static constexpr double kDefaultFitRadiusEdges = 2.0;      // x mean edge length (the jet's two-ring)
+  CurvatureEstimator estimator = CurvatureEstimator::Jet;
+  double presmoothing = -1, base_scale = -1, edge_smoothing = -1, min_length = -1, fit_radius = -1;
+  bool restrict_orientation = true;
+  double weak_angle = 11.0 * 3.14159265358979323846 / 180;  // no restriction at or below (thesis)
+  // Two-dimensional hysteresis: strong points seed, weak points connected to them are kept.
+  double strong_error = 0.5, weak_error = 0.8;              // normalised fit error, at most
+  double strong_angle = 0, weak_angle_h = 0;                // radians, at least; < 0 or 0: automatic
+  Progress progress = nullptr;
+};
+
+struct ReliefEdgeResult {
+  Curvature curvature;
+  BaseNormals base;
+  std::vector<Vec3> direction;    // #V g: unit tangent perpendicular to the edge, pointing up the step
+  std::vector<double> G;          // #V g^T II g after edge smoothing
+  std::vector<double> alpha;      // #V edge intensity alpha (eq. 4.14), 1/length^2
+  std::vector<double> fit_error;  // #V normalised fit error (eq. 4.7 / ||S||^2)
+  std::vector<double> angle;      // #V angle between surface and base normal, radians
+  double window = 0;              // orientation window w, radians
+  double strong_angle = 0, weak_angle = 0;  // hysteresis angles used
+  double mean_edge = 0, presmoothing = 0, base_scale = 0, edge_smoothing = 0, min_length = 0;
+  Polylines edges;
+};
+
+ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParams& params = {});
+
+}  // namespace reliefkit

@@ -1,0 +1,70 @@
+#include "ridges.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace reliefkit {
+
+Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength) {
+  if (c.dcurv.size() != c.k1.size()) throw InputError("ridges and valleys need the curvature derivative tensor");
+  const int nv = mesh.n_vertices();
+  std::vector<double> value(nv), strength(nv);
+  for (int v = 0; v < nv; ++v) {
+    value[v] = valleys ? c.dcurv[v].d : c.dcurv[v].a;  // derivative of k2 along t2 / of k1 along t1
+    strength[v] = valleys ? -c.k2[v] : c.k1[v];
+  }
+  DirectionalFieldView f;
+  f.direction = valleys ? c.dir2.data() : c.dir1.data();
+  f.value = value.data();
+  f.strength = strength.data();
+  f.size = size_t(nv);
+  f.axial = true;
+  f.value_along = [&c](int v, const Vec3& t) { return c.derivative_along(v, t); };
+  f.strength_along = [&c, valleys](int v, const Vec3& t) {
+    double k = c.normal_curvature(v, t);
+    return valleys ? -k : k;
+  };
+  ZeroCrossingOptions o;
+  o.min_strength = min_strength;
+  // Keep maxima of k1 (the derivative decreases along t1) for ridges, minima of k2 for valleys:
+  // the gradient of the linearly interpolated derivative across the face, against the face's
+  // mean direction.
+  o.accept_face = [&mesh, valleys](int face, const double val[3], const Vec3 dir[3]) {
+    const auto& fv = mesh.faces[face];
+    const Vec3 &p0 = mesh.vertices[fv[0]], &p1 = mesh.vertices[fv[1]], &p2 = mesh.vertices[fv[2]];
+    Vec3 n = (p1 - p0).cross(p2 - p0);
+    double a2 = n.squaredNorm();
+    if (!(a2 > 0)) return false;
+    // grad = sum_i val_i (n x e_i) / |n|^2, e_i the edge opposite vertex i (counter-clockwise).
+    Vec3 grad = (val[0] * n.cross(p2 - p1) + val[1] * n.cross(p0 - p2) + val[2] * n.cross(p1 - p0)) / a2;
+    double along = grad.dot(dir[0] + dir[1] + dir[2]);
+    return valleys ? along > 0 : along < 0;
+  };
+  return extract_zero_crossings(mesh, c.normal, f, o);
+}
+
+RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyParams& p) {
+  require_triangles(mesh);
+  RidgeValleyResult r;
+  r.mean_edge = mean_edge_length(mesh);
+  r.presmoothing = p.presmoothing >= 0 ? p.presmoothing : RidgeValleyParams::kDefaultPresmoothingEdges * r.mean_edge;
+  r.min_length = p.min_length >= 0 ? p.min_length : RidgeValleyParams::kDefaultMinLengthEdges * r.mean_edge;
+  CurvatureOptions co;
+  co.estimator = p.estimator;
+  co.smoothing_scale = r.presmoothing;
+  co.progress = p.progress;
+  r.curvature = compute_curvature(mesh, co);
+  if (p.progress) p.progress(90, "Ridges and valleys");
+  // Noise scale: the median magnitude of the curvature that each kind thresholds.
+  std::vector<double> kmax(r.curvature.k1.size()), kmin(r.curvature.k2.size());
+  for (size_t v = 0; v < kmax.size(); ++v) kmax[v] = std::abs(r.curvature.k1[v]), kmin[v] = std::abs(r.curvature.k2[v]);
+  Polylines all_r = ridge_lines(mesh, r.curvature, false, 0.0);
+  Polylines all_v = ridge_lines(mesh, r.curvature, true, 0.0);
+  r.ridge_threshold = p.relative_threshold * automatic_curve_threshold(median_positive(kmax), all_r);
+  r.valley_threshold = p.relative_threshold * automatic_curve_threshold(median_positive(kmin), all_v);
+  r.ridges = drop_short_chains(keep_strong_segments(all_r, r.ridge_threshold), r.min_length);
+  r.valleys = drop_short_chains(keep_strong_segments(all_v, r.valley_threshold), r.min_length);
+  return r;
+}
+
+}  // namespace reliefkit

@@ -1,0 +1,39 @@
+// ReliefKit — ridges and valleys, the classic curves (thesis 3.4 and 5.5.1; Ohtake, Belyaev,
+// Seidel, "Ridge-valley lines on meshes via implicit surface fitting", SIGGRAPH 2004).
+//
+// A ridge point is where the maximal curvature k1 > 0 has a maximum along its own direction
+// t1: the derivative of k1 along t1, C(t1, t1, t1) = a, crosses zero while decreasing along t1.
+// A valley point is where the minimal curvature k2 < 0 has a minimum along t2: C(t2, t2, t2) = d
+// crosses zero while increasing along t2. Principal directions have no sign, so the field is
+// axial (directions are aligned per face before interpolation). Strength: k1 for ridges, -k2
+// for valleys (1/length).
+#pragma once
+
+#include "reliefkit/curvature.h"
+#include "reliefkit/zero_crossings.h"
+
+namespace reliefkit {
+
+struct RidgeValleyParams {
+  static constexpr double kDefaultMinLengthEdges = 4.0;
+  static constexpr double kDefaultPresmoothingEdges = 1.0;
+  CurvatureEstimator estimator = CurvatureEstimator::Jet;
+  double presmoothing = -1;          // mesh units; < 0: default x mean edge length
+  double relative_threshold = 1.0;   // x automatic threshold (automatic_curve_threshold)
+  double min_length = -1;            // mesh units; < 0: default x mean edge length
+  Progress progress = nullptr;
+};
+
+struct RidgeValleyResult {
+  Curvature curvature;
+  Polylines ridges, valleys;
+  double mean_edge = 0, presmoothing = 0, min_length = 0;
+  double ridge_threshold = 0, valley_threshold = 0;  // absolute |k| thresholds used, 1/length
+};
+
+/// Ridges or valleys from an existing curvature (with derivatives); threshold absolute.
+Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength);
+
+RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyParams& params = {});
+
+}  // namespace reliefkit
