@@ -35,7 +35,7 @@ struct ReliefEdgeParams {
   static constexpr double kDefaultPresmoothingEdges = 1.0;   // x mean edge length
   static constexpr double kDefaultBaseScaleEdges = 15.0;     // x mean edge length
   static constexpr double kDefaultEdgeSmoothing = 0.8;       // x median edge length (thesis 4.4)
-  static constexpr double kDefaultMinLengthEdges = 4.0;      // x mean edge length
+  static constexpr double kDefaultMinLengthEdges = 2.0;      // x mean edge length
   static constexpr double kDefaultFitRadiusEdges = 2.0;      // x mean edge length (the jet's two-ring)
   CurvatureEstimator estimator = CurvatureEstimator::Jet;
   double presmoothing = -1, base_scale = -1, edge_smoothing = -1, min_length = -1, fit_radius = -1;

@@ -90,6 +90,38 @@ Relief discs_on_cylinder(const ReliefShape& s) {
   return r;
 }
 
+Relief squares_on_cylinder(const ReliefShape& s) {
+  const double R = 1, A1 = 0.6, A2 = 0.45;
+  Relief r;
+  r.mesh = cylinder(R, 2, 400, 128, s.jitter, s.seed);
+  auto cheb = [](double x, double y) { return std::max(std::abs(x), std::abs(y)); };
+  auto height = [&](double arc, double z) {
+    double d1 = cheb(arc, z), d2 = cheb(std::remainder(arc - M_PI * R, 2 * M_PI * R), z);
+    return s.height * step(A1 - d1, s.width) - s.height * step(A2 - d2, s.width);
+  };
+  for (auto& p : r.mesh.vertices) {
+    double u = std::atan2(p.y(), p.x());
+    Vec3 n(std::cos(u), std::sin(u), 0);
+    r.base_normal.push_back(n);
+    p += n * height(u * R, p.z());
+  }
+  for (auto [half, center, sign] : {std::tuple{A1, 0.0, 1.0}, std::tuple{A2, M_PI * R, -1.0}})
+    for (int k = 0; k < 4000; ++k) {  // perimeter of the square, 1000 samples a side
+      double t = -half + 2 * half * (k % 1000) / 1000.0;
+      double x = 0, z = 0;
+      switch (k / 1000) {
+        case 0: x = t, z = -half; break;
+        case 1: x = half, z = t; break;
+        case 2: x = -t, z = half; break;
+        default: x = -half, z = -t; break;
+      }
+      double u = (center + x) / R;
+      r.boundary.push_back(Vec3(std::cos(u), std::sin(u), 0) * (R + sign * 0.5 * s.height) + Vec3(0, 0, z));
+    }
+  finish(r, s);
+  return r;
+}
+
 Detection score(const Relief& r, const reliefkit::Polylines& c, double tol) {
   Detection d{0, 0};
   if (r.boundary.empty()) return d;

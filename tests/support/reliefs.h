@@ -32,6 +32,10 @@ Relief disc_on_sphere(const ReliefShape& s, int levels = 6);
 /// s.height on one side and a disc of radius 0.3 sunken by s.height on the other.
 Relief discs_on_cylinder(const ReliefShape& s);
 
+/// On the same cylinder: a raised square (side 1.2) and a sunken square (side 0.9), sharp
+/// corners (Chebyshev distance), in the unrolled (arc length, z) coordinates.
+Relief squares_on_cylinder(const ReliefShape& s);
+
 struct Detection {
   double recall;     // fraction of the boundary with a curve within the tolerance
   double precision;  // fraction of the curve length within the tolerance of the boundary
