@@ -1,0 +1,231 @@
+#include "relief_filters.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "base_normals.h"
+#include "mesh_bridge.h"
+#include "relief_edges.h"
+#include "ridges.h"
+
+namespace reliefkit::ml {
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180;
+
+const char* kReliefInfo =
+    "Draws <b>relief edges</b>: the edges of a relief as if it were an image printed on the smooth "
+    "surface underneath — outlines of stamped letters, figures and ornaments on handles, vases, lamps "
+    "and figurines, also where the relief is worn and the scan is noisy, and on curved objects.<br><br>"
+    "<b>Output</b>: a new layer <i>&lt;mesh&gt; – relief edges</i> (edges; vertex quality = edge strength, "
+    "the angle in degrees between the surface and the base surface; save it as OBJ). On the scanned mesh, "
+    "optionally, attributes <code>relief_G</code>, <code>relief_direction</code>, <code>relief_alpha</code>, "
+    "<code>relief_fit_error</code> and <code>base_normal</code>.<br><br>"
+    "Method: at every vertex a smoothed step edge is fitted to the local surface (its direction "
+    "maximises the correlation with the curvature-derivative tensor); the normal of the smooth base "
+    "surface limits the possible directions; the curvature across the edge is smoothed, and its zero "
+    "crossings are the edge points, kept by a two-dimensional hysteresis on how well the surface fits the "
+    "step model and how steep it is. M. Kolomenkin, I. Shimshoni, A. Tal, <b>\"On edge detection on "
+    "surfaces\"</b>, CVPR 2009; thesis chapter 4.";
+
+const char* kBaseInfo =
+    "Estimates the normals of the <b>smooth base surface</b> under a relief — the shape a coin, vase or "
+    "handle would have without its decoration — by smoothing the surface normals over a wide "
+    "neighbourhood (about three times the size of the relief's features) along the surface.<br><br>"
+    "<b>Output</b>: per-vertex attribute <code>base_normal</code> (Point3); optionally vertex quality = "
+    "angle in degrees between the surface normal and the base normal (large on the flanks of the relief).<br><br>"
+    "Method: one implicit heat-diffusion step of the normals (Gaussian scale = the parameter), solved by "
+    "conjugate gradients; thesis section 4.4 (M. Kolomenkin, I. Shimshoni, A. Tal, CVPR 2009).";
+
+const char* kRidgeInfo =
+    "Draws <b>ridges</b> (where the surface is most sharply convex across a crest) and <b>valleys</b> "
+    "(most sharply concave across a groove): the classic feature lines, for comparison with demarcating "
+    "curves and relief edges.<br><br>"
+    "<b>Output</b>: two new layers, <i>&lt;mesh&gt; – ridges</i> and <i>&lt;mesh&gt; – valleys</i> (edges; "
+    "vertex quality = |curvature|; save them as OBJ).<br><br>"
+    "Method: zero crossings of the derivative of the maximal (minimal) curvature along its own direction, "
+    "from the curvature-derivative tensor; Y. Ohtake, A. Belyaev, H.-P. Seidel, <b>\"Ridge-valley lines on "
+    "meshes via implicit surface fitting\"</b>, SIGGRAPH 2004; thesis sections 3.4 and 5.5.1.";
+
+void add_presmoothing(MeshModel& m, RichParameterList& par, double h) {
+  double diag = m.cm.bbox.Diag() > 0 ? m.cm.bbox.Diag() : 1.0;
+  par.addParam(RichAbsPerc("presmoothing", float(h), 0.f, float(diag / 10), "Pre-smoothing scale",
+                           "Removes scanner noise smaller than this distance before measuring curvature (a "
+                           "Gaussian scale, in the mesh's units). Default: the mean edge length. 0 turns it off."));
+}
+
+void add_base_scale(MeshModel& m, RichParameterList& par, double h) {
+  double diag = m.cm.bbox.Diag() > 0 ? m.cm.bbox.Diag() : 1.0;
+  par.addParam(RichAbsPerc("base_scale", float(ReliefEdgeParams::kDefaultBaseScaleEdges * h), 0.f, float(diag / 2),
+                           "Base surface scale",
+                           "How far normals are averaged to find the smooth surface under the relief: about three "
+                           "times the width of the relief's features (letters, figures). Default: 15 mean edge "
+                           "lengths."));
+}
+
+void relief_parameters(MeshModel& m, RichParameterList& par) {
+  const double h = mean_edge_length(m);
+  add_presmoothing(m, par, h);
+  add_base_scale(m, par, h);
+  par.addParam(RichAbsPerc("edge_smoothing", float(ReliefEdgeParams::kDefaultEdgeSmoothing * h), 0.f,
+                           float(m.cm.bbox.Diag() > 0 ? m.cm.bbox.Diag() / 10 : 1.0), "Edge smoothing",
+                           "Smooths jagged edges (a Gaussian scale, in mesh units). Default: 0.8 edge lengths; 0 "
+                           "turns it off."));
+  par.addParam(RichBool("restrict", true, "Use the base surface for directions",
+                        "Limits the edge directions to those the base surface allows; helps on noisy scans."));
+  par.addParam(RichFloat("strong_error", 0.5f, "Model error, strong edges",
+                         "Edges seed where the surface fits a step edge at least this well (0 perfect, 1 not at all)."));
+  par.addParam(RichFloat("weak_error", 0.8f, "Model error, weak edges",
+                         "Edges continue from the seeds where the fit is at least this good."));
+  par.addParam(RichFloat("strong_angle", 0.f, "Steepness, strong edges (degrees)",
+                         "Edges seed where the surface is tilted at least this much against the base surface. 0: "
+                         "automatic (above the tilt scanner noise gives, at least 11 degrees). Shallow reliefs such "
+                         "as worn coins need 4-6 degrees."));
+  par.addParam(RichFloat("weak_angle", 0.f, "Steepness, weak edges (degrees)",
+                         "Edges continue from the seeds where the tilt is at least this. 0: half the strong one."));
+  par.addParam(RichFloat("min_length", float(ReliefEdgeParams::kDefaultMinLengthEdges), "Minimum curve length",
+                         "Drops edge pieces shorter than this many edge lengths. 0 keeps all."));
+  par.addParam(RichBool("per_vertex", true, "Write per-vertex results",
+                        "Also store the per-vertex quantities on this mesh (relief_G, relief_direction, "
+                        "relief_alpha, relief_fit_error, base_normal)."));
+  par.addParam(RichBool("quality", false, "Vertex quality = curvature across the edge",
+                        "Also put G (zero on the edges) into vertex quality."));
+}
+
+void apply_relief(FilterCall& call) {
+  auto t0 = std::chrono::steady_clock::now();
+  View view = view_of(call.mesh);
+  const auto& P = call.params;
+  ReliefEdgeParams p;
+  const double h = reliefkit::mean_edge_length(view.mesh);
+  p.presmoothing = std::max(0.f, P.getAbsPerc("presmoothing"));
+  p.base_scale = P.getAbsPerc("base_scale");
+  if (!(p.base_scale > 0)) throw InputError("the base surface scale must be positive");
+  p.edge_smoothing = std::max(0.f, P.getAbsPerc("edge_smoothing"));
+  p.restrict_orientation = P.getBool("restrict");
+  p.strong_error = P.getFloat("strong_error");
+  p.weak_error = std::max(P.getFloat("weak_error"), P.getFloat("strong_error"));
+  p.strong_angle = std::max(0.f, P.getFloat("strong_angle")) * kDeg;
+  p.weak_angle_h = std::max(0.f, P.getFloat("weak_angle")) * kDeg;
+  p.min_length = std::max(0.f, P.getFloat("min_length")) * h;
+  p.progress = call.progress;
+  ReliefEdgeResult r = compute_relief_edges(view.mesh, p);
+  Polylines edges = r.edges;
+  for (auto& s : edges.strength) s /= kDeg;  // layer quality in degrees
+  const QString label = derived_label(call.mesh, "relief edges");
+  add_curve_layer(call.doc, label, edges);
+  if (P.getBool("per_vertex")) {
+    write_vertex_attribute(call.mesh.cm, view, "relief_G", r.G);
+    write_vertex_vectors(call.mesh.cm, view, "relief_direction", r.direction);
+    write_vertex_attribute(call.mesh.cm, view, "relief_alpha", r.alpha);
+    write_vertex_attribute(call.mesh.cm, view, "relief_fit_error", r.fit_error);
+    write_vertex_vectors(call.mesh.cm, view, "base_normal", r.base.normal);
+  }
+  if (P.getBool("quality")) {
+    call.mesh.updateDataMask(MeshModel::MM_VERTQUALITY);
+    for (size_t i = 0; i < view.vertex_of.size(); ++i) view.vertex_of[i]->Q() = float(r.G[i]);
+  }
+  double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  call.log(QString("Relief edges: %1 segments in %2 curves, length %3, layer \"%4\"; %5 s.")
+               .arg(thousands(static_cast<long long>(r.edges.segments.size())))
+               .arg(thousands(static_cast<long long>(r.edges.chains().size())))
+               .arg(r.edges.total_length(), 0, 'g', 5)
+               .arg(label)
+               .arg(secs, 0, 'f', 3));
+  call.log(QString("Direction window %1 deg; hysteresis: strong = error <= %2 and tilt >= %3 deg, weak = error <= "
+                   "%4 and tilt >= %5 deg; base scale %6 (%7 CG iterations), edge smoothing %8.")
+               .arg(r.window / kDeg, 0, 'f', 1)
+               .arg(p.strong_error, 0, 'g', 3)
+               .arg(r.strong_angle / kDeg, 0, 'f', 1)
+               .arg(p.weak_error, 0, 'g', 3)
+               .arg(r.weak_angle / kDeg, 0, 'f', 1)
+               .arg(r.base_scale, 0, 'g', 4)
+               .arg(r.base.iterations)
+               .arg(r.edge_smoothing, 0, 'g', 4));
+}
+
+void base_parameters(MeshModel& m, RichParameterList& par) {
+  add_base_scale(m, par, mean_edge_length(m));
+  par.addParam(RichBool("quality", true, "Vertex quality = tilt against the base",
+                        "Put the angle (degrees) between the surface normal and the base normal into vertex quality."));
+}
+
+void apply_base(FilterCall& call) {
+  auto t0 = std::chrono::steady_clock::now();
+  View view = view_of(call.mesh);
+  BaseNormalOptions o;
+  o.scale = call.params.getAbsPerc("base_scale");
+  o.progress = call.progress;
+  if (!(o.scale > 0)) throw InputError("the base surface scale must be positive");
+  VertexFaces vf = vertex_faces(view.mesh);
+  std::vector<Vec3> n = vertex_normals(view.mesh, vf);
+  BaseNormals b = estimate_base_normals(view.mesh, n, o);
+  write_vertex_vectors(call.mesh.cm, view, "base_normal", b.normal);
+  if (call.params.getBool("quality")) {
+    call.mesh.updateDataMask(MeshModel::MM_VERTQUALITY);
+    for (size_t i = 0; i < view.vertex_of.size(); ++i)
+      view.vertex_of[i]->Q() = float(std::acos(std::clamp(n[i].dot(b.normal[i]), -1.0, 1.0)) / kDeg);
+  }
+  double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  call.log(QString("Base normals of %1 vertices at scale %2: %3 conjugate-gradient iterations (residual %4), %5 s.")
+               .arg(thousands(view.mesh.n_vertices()))
+               .arg(o.scale, 0, 'g', 4)
+               .arg(b.iterations)
+               .arg(b.residual, 0, 'g', 2)
+               .arg(secs, 0, 'f', 3));
+}
+
+void ridge_parameters(MeshModel& m, RichParameterList& par) {
+  par.addParam(RichFloat("threshold", 1.f, "Strength threshold",
+                         "Keeps lines at least this curved, relative to the automatic threshold (1). Smaller values "
+                         "show fainter lines, larger only the sharpest."));
+  add_presmoothing(m, par, mean_edge_length(m));
+  par.addParam(RichFloat("min_length", float(RidgeValleyParams::kDefaultMinLengthEdges), "Minimum curve length",
+                         "Drops pieces shorter than this many edge lengths. 0 keeps all."));
+}
+
+void apply_ridges(FilterCall& call) {
+  auto t0 = std::chrono::steady_clock::now();
+  View view = view_of(call.mesh);
+  RidgeValleyParams p;
+  const double h = reliefkit::mean_edge_length(view.mesh);
+  p.relative_threshold = std::max(0.f, call.params.getFloat("threshold"));
+  p.presmoothing = std::max(0.f, call.params.getAbsPerc("presmoothing"));
+  p.min_length = std::max(0.f, call.params.getFloat("min_length")) * h;
+  p.progress = call.progress;
+  RidgeValleyResult r = compute_ridges_valleys(view.mesh, p);
+  const QString lr = derived_label(call.mesh, "ridges"), lv = derived_label(call.mesh, "valleys");
+  add_curve_layer(call.doc, lr, r.ridges, vcg::Color4b(200, 30, 30, 255));
+  add_curve_layer(call.doc, lv, r.valleys, vcg::Color4b(30, 30, 200, 255));
+  double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  call.log(QString("Ridges: %1 segments (threshold %2); valleys: %3 segments (threshold %4); layers \"%5\", \"%6\"; "
+                   "%7 s.")
+               .arg(thousands(static_cast<long long>(r.ridges.segments.size())))
+               .arg(r.ridge_threshold, 0, 'g', 4)
+               .arg(thousands(static_cast<long long>(r.valleys.segments.size())))
+               .arg(r.valley_threshold, 0, 'g', 4)
+               .arg(lr)
+               .arg(lv)
+               .arg(secs, 0, 'f', 3));
+}
+
+}  // namespace
+
+FilterSpec relief_edges_filter(int id) {
+  return FilterSpec{id, "Relief Edges", kReliefInfo,
+                    MeshFilterInterface::FilterClass(MeshFilterInterface::Normal | MeshFilterInterface::Layer),
+                    MeshModel::MM_NONE, MeshModel::MM_VERTQUALITY, relief_parameters, apply_relief};
+}
+
+FilterSpec base_normals_filter(int id) {
+  return FilterSpec{id, "Estimate Base Normals", kBaseInfo, MeshFilterInterface::Normal, MeshModel::MM_NONE,
+                    MeshModel::MM_VERTQUALITY, base_parameters, apply_base};
+}
+
+FilterSpec ridges_valleys_filter(int id) {
+  return FilterSpec{id, "Ridges and Valleys", kRidgeInfo,
+                    MeshFilterInterface::FilterClass(MeshFilterInterface::Normal | MeshFilterInterface::Layer),
+                    MeshModel::MM_NONE, MeshModel::MM_NONE, ridge_parameters, apply_ridges};
+}
+
+}  // namespace reliefkit::ml
