@@ -1,0 +1,160 @@
+// "Relief Edges", "Estimate Base Normals" and "Ridges and Valleys" through the real meshlabserver.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "mesh_files.h"
+#include "reliefs.h"
+#include "server.h"
+#include "shapes.h"
+
+using namespace rktest;
+
+namespace {
+
+std::string relief_filter(double h) {
+  return mlx_filter("Relief Edges",
+                    {param_absperc("presmoothing", h), param_absperc("base_scale", 15 * h),
+                     param_absperc("edge_smoothing", 0.8 * h), param_bool("restrict", true),
+                     param_float("strong_error", 0.5), param_float("weak_error", 0.8), param_float("strong_angle", 0),
+                     param_float("weak_angle", 0), param_float("min_length", 2), param_bool("per_vertex", true),
+                     param_bool("quality", false)});
+}
+std::string base_filter(double h) {
+  return mlx_filter("Estimate Base Normals", {param_absperc("base_scale", 15 * h), param_bool("quality", true)});
+}
+std::string ridges_filter(double h) {
+  return mlx_filter("Ridges and Valleys",
+                    {param_float("threshold", 1), param_absperc("presmoothing", h), param_float("min_length", 4)});
+}
+
+reliefkit::Polylines as_polylines(const MeshFile& f) {
+  reliefkit::Polylines p;
+  p.points = f.mesh.vertices;
+  p.strength.assign(p.points.size(), 1);
+  p.segments = f.edges;
+  return p;
+}
+
+}  // namespace
+
+TEST(ReliefFilters, ReliefEdgesOnANoisyCylinder) {
+  ReliefShape s;
+  s.noise = 0.15;
+  Relief r = discs_on_cylinder(s);
+  std::string dir = temp_dir("relief_cylinder");
+  write_ply(dir + "/in.ply", r.mesh);
+  write_text(dir + "/s.mlx", mlx_script({relief_filter(r.mean_edge)}));
+  ServerRun run = run_meshlabserver({"-i", dir + "/in.ply", "-o", dir + "/edges.obj", "-l", "1", "-s", dir + "/s.mlx"});
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("in \u2013 relief edges"), std::string::npos) << run.output;
+  MeshFile edges = read_mesh(dir + "/edges.obj");
+  ASSERT_GT(edges.edges.size(), 100u);
+  Detection d = score(r, as_polylines(edges), r.mean_edge);
+  EXPECT_GE(d.recall, 0.90);
+  EXPECT_GE(d.precision, 0.85);
+}
+
+TEST(ReliefFilters, BaseNormalsTiltIsLargeOnTheFlanksOnly) {
+  Relief r = disc_on_plane({}, 100);
+  std::string dir = temp_dir("base_plane");
+  write_ply(dir + "/in.ply", r.mesh);
+  write_text(dir + "/s.mlx", mlx_script({base_filter(r.mean_edge)}));
+  ServerRun run = run_meshlabserver({"-i", dir + "/in.ply", "-o", dir + "/out.ply", "-m", "vq", "-s", dir + "/s.mlx"});
+  ASSERT_EQ(run.status, 0) << run.output;
+  MeshFile out = read_mesh(dir + "/out.ply");
+  const auto& q = out.vertex_props["quality"];
+  ASSERT_EQ(q.size(), out.mesh.vertices.size());
+  double flank = 0, flat = 0;
+  int nf = 0, nt = 0;
+  for (size_t i = 0; i < q.size(); ++i) {
+    double rad = std::hypot(out.mesh.vertices[i].x(), out.mesh.vertices[i].y());
+    if (std::abs(rad - 0.5) < 0.01) flank += q[i], ++nf;  // steepest part of the step (37 degrees)
+    if (rad < 0.2 || (rad > 0.8 && rad < 0.95)) flat += q[i], ++nt;
+  }
+  EXPECT_GT(flank / nf, 25);
+  EXPECT_LT(flat / nt, 3);
+}
+
+TEST(ReliefFilters, RidgesAndValleysLayers) {
+  // A groove along y at x = 0: one valley line there.
+  reliefkit::TriMesh m = height_field([](double x, double) { return -0.05 * std::exp(-x * x / (2 * 0.05 * 0.05)); },
+                                      1.0, 120, 0.3, 2);
+  double h = reliefkit::mean_edge_length(m);
+  std::string dir = temp_dir("ridges_groove");
+  write_ply(dir + "/in.ply", m);
+  write_text(dir + "/s.mlx", mlx_script({ridges_filter(h)}));
+  ServerRun run = run_meshlabserver({"-i", dir + "/in.ply", "-o", dir + "/ridges.obj", "-l", "1", "-o",
+                                     dir + "/valleys.obj", "-l", "2", "-s", dir + "/s.mlx"});
+  ASSERT_EQ(run.status, 0) << run.output;
+  MeshFile valleys = read_mesh(dir + "/valleys.obj");
+  MeshFile ridges = read_mesh(dir + "/ridges.obj");
+  ASSERT_GT(valleys.edges.size(), 50u);
+  ASSERT_GT(ridges.edges.size(), 50u);  // the groove's two shoulders
+  // The groove bottom x = 0 is covered along its length; the shoulders at x = +-sqrt(3) s.
+  auto covered = [&](const MeshFile& f, double x0) {
+    double len = 0;
+    for (const auto& e : f.edges) {
+      const auto &a = f.mesh.vertices[e[0]], &b = f.mesh.vertices[e[1]];
+      if (std::abs(0.5 * (a.x() + b.x()) - x0) < h) len += (a - b).norm();
+    }
+    return len;
+  };
+  EXPECT_GT(covered(valleys, 0.0), 0.9 * 2.0);
+  EXPECT_GT(covered(ridges, std::sqrt(3.0) * 0.05), 0.8 * 2.0);
+  EXPECT_GT(covered(ridges, -std::sqrt(3.0) * 0.05), 0.8 * 2.0);
+}
+
+class ReliefBadInput : public ::testing::TestWithParam<int> {
+ protected:
+  ServerRun run(const std::string& name, const reliefkit::TriMesh& m) {
+    std::string dir = temp_dir(name + std::to_string(GetParam()));
+    write_ply(dir + "/in.ply", m);
+    const double h = 0.05;
+    std::string f = GetParam() == 0 ? relief_filter(h) : GetParam() == 1 ? base_filter(h) : ridges_filter(h);
+    write_text(dir + "/s.mlx", mlx_script({f}));
+    return run_meshlabserver({"-i", dir + "/in.ply", "-o", dir + "/out.ply", "-s", dir + "/s.mlx"});
+  }
+};
+
+TEST_P(ReliefBadInput, PointCloud) {
+  reliefkit::TriMesh m = sphere(1, 2);
+  m.faces.clear();
+  ServerRun r = run("pointcloud", m);
+  EXPECT_FALSE(r.crashed) << r.output;
+  EXPECT_NE(r.output.find("point cloud"), std::string::npos) << r.output;
+}
+
+TEST_P(ReliefBadInput, EmptyMesh) {
+  ServerRun r = run("empty", reliefkit::TriMesh{});
+  EXPECT_FALSE(r.crashed) << r.output;
+  EXPECT_NE(r.output.find("empty mesh"), std::string::npos) << r.output;
+}
+
+TEST_P(ReliefBadInput, NaNCoordinates) {
+  reliefkit::TriMesh m = sphere(1, 3);
+  m.vertices[3].z() = std::numeric_limits<double>::quiet_NaN();
+  ServerRun r = run("nan", m);
+  EXPECT_FALSE(r.crashed) << r.output;
+  EXPECT_NE(r.output.find("NaN"), std::string::npos) << r.output;
+}
+
+TEST_P(ReliefBadInput, NonManifoldDegenerateAndFlat) {
+  Relief rel = disc_on_plane({}, 60);
+  reliefkit::TriMesh m = rel.mesh;
+  m.vertices.push_back({0, 0, 1});
+  m.faces.push_back({m.faces[10][0], m.faces[10][1], m.n_vertices() - 1});
+  m.faces.push_back({5, 5, 6});
+  m.vertices.push_back(m.vertices[7]);
+  m.faces.push_back({7, m.n_vertices() - 1, 7});
+  m.vertices.push_back({9, 9, 9});
+  ServerRun r = run("nonmanifold", m);
+  EXPECT_FALSE(r.crashed) << r.output;
+  EXPECT_EQ(r.status, 0) << r.output;
+  ServerRun flat = run("flat", height_field([](double, double) { return 0.0; }, 1.0, 30, 0.3));
+  EXPECT_FALSE(flat.crashed) << flat.output;
+  EXPECT_EQ(flat.status, 0) << flat.output;
+}
+
+INSTANTIATE_TEST_SUITE_P(AllThreeFilters, ReliefBadInput, ::testing::Values(0, 1, 2));
