@@ -120,6 +120,8 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
 #endif
     auto& out = per_thread[tid];
     auto& sf = seg_faces[tid];
+    out.reserve(size_t(nf) / (4 * size_t(nthreads)) + 16);  // noisy scans cross about a quarter of faces
+    sf.reserve(size_t(nf) / (8 * size_t(nthreads)) + 8);
 #pragma omp for schedule(static)
     for (int fi = 0; fi < nf; ++fi) {
       const auto& f = mesh.faces[fi];
@@ -212,20 +214,36 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
     seg_base += static_cast<int>(seg_faces[t].size());
   }
   res.segments.assign(seg_base, {0, 0});
-  std::sort(all.begin(), all.end(), [](const Crossing& x, const Crossing& y) {
-    return x.key != y.key ? x.key < y.key : x.slot < y.slot;
-  });
-  for (size_t i = 0; i < all.size();) {
+  // Merge the crossings that lie on the same mesh edge: a counting sort on the edge's lower
+  // vertex (linear time), then a small sort inside each bucket (its edges and, for a tie, the
+  // segment slot, which keeps the result deterministic).
+  std::vector<int> start(size_t(nv) + 1, 0);
+  for (const auto& c : all) ++start[(c.key >> 32) + 1];
+  for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<int> order(all.size());
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (size_t i = 0; i < all.size(); ++i) order[fill[all[i].key >> 32]++] = static_cast<int>(i);
+  }
+  for (int v = 0; v < nv; ++v)
+    if (start[v + 1] - start[v] > 1)
+      std::sort(order.begin() + start[v], order.begin() + start[v + 1], [&all](int x, int y) {
+        return all[x].key != all[y].key ? all[x].key < all[y].key : all[x].slot < all[y].slot;
+      });
+  res.points.reserve(all.size() / 2 + 1);
+  res.strength.reserve(all.size() / 2 + 1);
+  for (size_t i = 0; i < order.size();) {
     size_t j = i;
+    const Crossing& first = all[order[i]];
     Vec3 p = Vec3::Zero();
     double s = 0;
-    while (j < all.size() && all[j].key == all[i].key) p += all[j].p, s += all[j].s, ++j;
+    while (j < order.size() && all[order[j]].key == first.key) p += all[order[j]].p, s += all[order[j]].s, ++j;
     int id = static_cast<int>(res.points.size());
     res.points.push_back(p / double(j - i));
     res.strength.push_back(s / double(j - i));
-    res.point_edge.push_back({int(all[i].key >> 32), int(all[i].key & 0xffffffffu)});
-    res.point_weight.push_back(all[i].w);
-    for (size_t k = i; k < j; ++k) res.segments[all[k].slot / 2][all[k].slot % 2] = id;
+    res.point_edge.push_back({int(first.key >> 32), int(first.key & 0xffffffffu)});
+    res.point_weight.push_back(first.w);
+    for (size_t k = i; k < j; ++k) res.segments[all[order[k]].slot / 2][all[order[k]].slot % 2] = id;
     i = j;
   }
   return res;

@@ -88,24 +88,29 @@ BaseNormals estimate_base_normals(const TriMesh& mesh, const std::vector<Vec3>& 
   const double tol2 = opt.tolerance * opt.tolerance;
   for (int it = 0; it < opt.max_iterations; ++it) {
     multiply(p, q);
-    Vec3 pq = Vec3::Zero();
-    for (int v = 0; v < nv; ++v) pq += p[v].cwiseProduct(q[v]);
-    Vec3 alpha = (pq.array() > 0).select(rz.cwiseQuotient(pq), Vec3::Zero());
-    Vec3 rr = Vec3::Zero(), rz_new = Vec3::Zero();
+    double pq0 = 0, pq1 = 0, pq2 = 0;
+#pragma omp parallel for schedule(static) reduction(+ : pq0, pq1, pq2)
+    for (int v = 0; v < nv; ++v) pq0 += p[v].x() * q[v].x(), pq1 += p[v].y() * q[v].y(), pq2 += p[v].z() * q[v].z();
+    const Vec3 pq(pq0, pq1, pq2);
+    const Vec3 alpha = (pq.array() > 0).select(rz.cwiseQuotient(pq), Vec3::Zero());
+    double rr0 = 0, rr1 = 0, rr2 = 0, rz0 = 0, rz1 = 0, rz2 = 0;
+#pragma omp parallel for schedule(static) reduction(+ : rr0, rr1, rr2, rz0, rz1, rz2)
     for (int v = 0; v < nv; ++v) {
       x[v] += alpha.cwiseProduct(p[v]);
       r[v] -= alpha.cwiseProduct(q[v]);
       z[v] = r[v] / diag[v];
-      rr += r[v].cwiseProduct(r[v]);
-      rz_new += r[v].cwiseProduct(z[v]);
+      rr0 += r[v].x() * r[v].x(), rr1 += r[v].y() * r[v].y(), rr2 += r[v].z() * r[v].z();
+      rz0 += r[v].x() * z[v].x(), rz1 += r[v].y() * z[v].y(), rz2 += r[v].z() * z[v].z();
     }
+    const Vec3 rr(rr0, rr1, rr2), rz_new(rz0, rz1, rz2);
     out.iterations = it + 1;
     double rel = 0;
     for (int k = 0; k < 3; ++k) rel = std::max(rel, bnorm2[k] > 0 ? rr[k] / bnorm2[k] : 0.0);
     out.residual = std::sqrt(rel);
     if (rel <= tol2) break;
-    Vec3 beta = (rz.array() > 0).select(rz_new.cwiseQuotient(rz), Vec3::Zero());
+    const Vec3 beta = (rz.array() > 0).select(rz_new.cwiseQuotient(rz), Vec3::Zero());
     rz = rz_new;
+#pragma omp parallel for schedule(static)
     for (int v = 0; v < nv; ++v) p[v] = z[v] + beta.cwiseProduct(p[v]);
     if (opt.progress && it % 10 == 0) opt.progress(std::min(95, 10 + it), "Base normals: diffusion");
   }

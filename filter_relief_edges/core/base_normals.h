@@ -17,7 +17,7 @@ namespace reliefkit {
 struct BaseNormalOptions {
   double scale = 0;          // Gaussian scale in mesh units (required, > 0)
   int max_iterations = 500;
-  double tolerance = 1e-4;   // relative residual of the conjugate-gradient solve
+  double tolerance = 1e-3;   // relative residual of the conjugate-gradient solve
   Progress progress = nullptr;
 };
 

@@ -65,10 +65,10 @@ Relief disc_on_sphere(const ReliefShape& s, int levels) {
   return r;
 }
 
-Relief discs_on_cylinder(const ReliefShape& s) {
+Relief discs_on_cylinder(const ReliefShape& s, int nu, int nz) {
   const double R = 1, R1 = 0.4, R2 = 0.3;
   Relief r;
-  r.mesh = cylinder(R, 2, 400, 128, s.jitter, s.seed);
+  r.mesh = cylinder(R, 2, nu, nz, s.jitter, s.seed);
   auto height = [&](double arc, double z) {
     double d1 = std::hypot(arc, z), d2 = std::hypot(std::remainder(arc - M_PI * R, 2 * M_PI * R), z);
     return s.height * step(R1 - d1, s.width) - s.height * step(R2 - d2, s.width);

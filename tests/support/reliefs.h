@@ -30,7 +30,7 @@ Relief disc_on_plane(const ReliefShape& s, int n = 150);
 Relief disc_on_sphere(const ReliefShape& s, int levels = 6);
 /// On a cylinder of radius 1, height 2 (400 x 128 cells): a disc of radius 0.4 raised by
 /// s.height on one side and a disc of radius 0.3 sunken by s.height on the other.
-Relief discs_on_cylinder(const ReliefShape& s);
+Relief discs_on_cylinder(const ReliefShape& s, int nu = 400, int nz = 128);
 
 /// On the same cylinder: a raised square (side 1.2) and a sunken square (side 0.9), sharp
 /// corners (Chebyshev distance), in the unrolled (arc length, z) coordinates.
