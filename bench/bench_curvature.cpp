@@ -14,42 +14,19 @@
 #include <vector>
 
 #include "reliefkit/curvature.h"
+#include "bench_util.h"
 #include "shapes.h"
 
 using namespace reliefkit;
 
-namespace {
-
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-
-long status_kb(const char* key) {
-  std::ifstream f("/proc/self/status");
-  std::string line;
-  while (std::getline(f, line))
-    if (line.rfind(key, 0) == 0) return std::stol(line.substr(std::strlen(key)));
-  return -1;
-}
-void reset_peak() { std::ofstream("/proc/self/clear_refs") << "5"; }
-
-}  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<long> sizes = {100000, 1000000, 4000000};
-  int repeat = 3;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--sizes")) {
-      sizes.clear();
-      std::stringstream ss(argv[i + 1]);
-      std::string tok;
-      while (std::getline(ss, tok, ',')) sizes.push_back(std::stol(tok));
-    } else if (!std::strcmp(argv[i], "--repeat")) {
-      repeat = std::atoi(argv[i + 1]);
-    }
-  }
+  const rkbench::Args args = rkbench::parse_args(argc, argv, {100000, 1000000, 4000000});
+  const int repeat = args.repeat;
   std::printf("ReliefKit curvature benchmark: %d threads (OpenMP), best of %d runs\n", omp_get_max_threads(), repeat);
   std::printf("%-10s %-10s %-28s %9s %12s %10s\n", "faces", "vertices", "computation", "time s", "s / M faces",
               "peak MiB");
-  for (long target : sizes) {
+  for (long target : args.sizes) {
     TriMesh m = rktest::relief_torus(target);
     struct Config {
       const char* name;
@@ -60,22 +37,22 @@ int main(int argc, char** argv) {
                    {"face fit: curvature only", CurvatureEstimator::FaceFit, false}};
     for (const auto& c : configs) {
       double best = 1e30;
-      long peak = 0;
+      double peak = 0;
       for (int r = 0; r < repeat; ++r) {
-        long base = status_kb("VmRSS:");
-        reset_peak();
+        rkbench::PeakMemory mem;
+        mem.start();
         CurvatureOptions opt;
         opt.estimator = c.est;
         opt.derivatives = c.deriv;
-        double t0 = now();
+        double t0 = rkbench::now();
         Curvature k = compute_curvature(m, opt);
-        double t = now() - t0;
+        double t = rkbench::now() - t0;
         best = std::min(best, t);
-        peak = std::max(peak, status_kb("VmHWM:") - base);
+        peak = std::max(peak, mem.grown_mib());
         if (k.k1.empty()) return 1;
       }
       std::printf("%-10d %-10d %-28s %9.3f %12.3f %10.1f\n", m.n_faces(), m.n_vertices(), c.name, best,
-                  best / (m.n_faces() / 1e6), peak / 1024.0);
+                  best / (m.n_faces() / 1e6), peak);
     }
   }
   return 0;

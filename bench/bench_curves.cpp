@@ -19,48 +19,19 @@
 #include "relief_edges.h"
 #include "ridges.h"
 #include "reliefs.h"
+#include "bench_util.h"
 #include "shapes.h"
 
 using namespace reliefkit;
 
-namespace {
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-long status_kb(const char* key) {
-  std::ifstream f("/proc/self/status");
-  std::string line;
-  while (std::getline(f, line))
-    if (line.rfind(key, 0) == 0) return std::stol(line.substr(std::strlen(key)));
-  return -1;
-}
-std::map<std::string, double> stage_time;
-std::string stage;
-double stage_start = 0;
-bool progress(int, const char* what) {
-  double t = now();
-  if (!stage.empty()) stage_time[stage] += t - stage_start;
-  stage = what;
-  stage_start = t;
-  return true;
-}
-}  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<long> sizes = {1000000};
-  int repeat = 3;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--sizes")) {
-      sizes.clear();
-      std::stringstream ss(argv[i + 1]);
-      std::string tok;
-      while (std::getline(ss, tok, ',')) sizes.push_back(std::stol(tok));
-    } else if (!std::strcmp(argv[i], "--repeat")) {
-      repeat = std::atoi(argv[i + 1]);
-    }
-  }
+  const rkbench::Args args = rkbench::parse_args(argc, argv, {1000000});
+  const int repeat = args.repeat;
   std::printf("ReliefKit curve filters (cores, defaults), %d threads, best of %d runs\n", omp_get_max_threads(), repeat);
   std::printf("%-10s %-32s %9s %12s %10s %10s\n", "faces", "filter core", "time s", "s / M faces", "peak MiB",
               "segments");
-  for (long target : sizes) {
+  for (long target : args.sizes) {
     // A raised and a sunken disc on a cylinder, 10 % normal noise, about `target` faces.
     rktest::ReliefShape shape;
     shape.noise = 0.1;
@@ -77,7 +48,7 @@ int main(int argc, char** argv) {
         {"Relief Edges (with base normals)",
          [&] {
            ReliefEdgeParams p;
-           p.progress = progress;
+           p.progress = rkbench::stage_progress;
            return compute_relief_edges(m, p).edges.segments.size();
          }},
         {"Ridges and Valleys",
@@ -87,26 +58,24 @@ int main(int argc, char** argv) {
          }}};
     for (const auto& [name, fn] : runs) {
       double best = 1e30;
-      long peak = 0;
+      double peak = 0;
       size_t segs = 0;
       for (int r = 0; r < repeat; ++r) {
-        long base = status_kb("VmRSS:");
-        std::ofstream("/proc/self/clear_refs") << "5";
-        stage_time.clear();
-        stage.clear();
-        double t0 = now();
-        stage_start = t0;
-        segs = fn();
-        double t = now() - t0;
-        progress(100, "");
+        rkbench::PeakMemory mem;
+        mem.start();
+        rkbench::g_stages.start();
+        double t0 = rkbench::now();
+                segs = fn();
+        double t = rkbench::now() - t0;
+        rkbench::stage_progress(100, "");
         if (t < best) {
           best = t;
-          if (!stage_time.empty()) relief_stages = stage_time;
+          if (!rkbench::g_stages.time.empty()) relief_stages = rkbench::g_stages.time;
         }
-        peak = std::max(peak, status_kb("VmHWM:") - base);
+        peak = std::max(peak, mem.grown_mib());
       }
       std::printf("%-10d %-32s %9.3f %12.3f %10.0f %10zu\n", m.n_faces(), name, best, best / (m.n_faces() / 1e6),
-                  peak / 1024.0, segs);
+                  peak, segs);
     }
     std::printf("  relief-edge stages (best run):\n");
     for (const auto& kv : relief_stages)

@@ -13,70 +13,39 @@
 #include <string>
 
 #include "demarcating.h"
+#include "bench_util.h"
 #include "shapes.h"
 
 using namespace reliefkit;
 
-namespace {
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-long status_kb(const char* key) {
-  std::ifstream f("/proc/self/status");
-  std::string line;
-  while (std::getline(f, line))
-    if (line.rfind(key, 0) == 0) return std::stol(line.substr(std::strlen(key)));
-  return -1;
-}
-std::map<std::string, double> stage_time;
-std::string stage;
-double stage_start = 0;
-bool progress(int, const char* what) {
-  double t = now();
-  if (!stage.empty()) stage_time[stage] += t - stage_start;
-  stage = what;
-  stage_start = t;
-  return true;
-}
-}  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<long> sizes = {1000000, 4000000};
-  int repeat = 3;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--sizes")) {
-      sizes.clear();
-      std::stringstream ss(argv[i + 1]);
-      std::string tok;
-      while (std::getline(ss, tok, ',')) sizes.push_back(std::stol(tok));
-    } else if (!std::strcmp(argv[i], "--repeat")) {
-      repeat = std::atoi(argv[i + 1]);
-    }
-  }
+  const rkbench::Args args = rkbench::parse_args(argc, argv, {1000000, 4000000});
+  const int repeat = args.repeat;
   std::printf("ReliefKit demarcating-curves benchmark: %d threads, best of %d runs, filter defaults\n",
               omp_get_max_threads(), repeat);
-  for (long target : sizes) {
+  for (long target : args.sizes) {
     TriMesh m = rktest::relief_torus(target);
     double best = 1e30;
-    long peak = 0;
+    double peak = 0;
     size_t segments = 0;
     std::map<std::string, double> best_stages;
     for (int r = 0; r < repeat; ++r) {
-      long base = status_kb("VmRSS:");
-      std::ofstream("/proc/self/clear_refs") << "5";
-      stage_time.clear();
-      stage.clear();
+      rkbench::PeakMemory mem;
+      mem.start();
+      rkbench::g_stages.start();
       DemarcatingParams p;
-      p.progress = progress;
-      double t0 = now();
-      stage_start = t0;
-      DemarcatingResult res = compute_demarcating(m, p);
-      double t = now() - t0;
-      progress(100, "");
-      if (t < best) best = t, best_stages = stage_time;
-      peak = std::max(peak, status_kb("VmHWM:") - base);
+      p.progress = rkbench::stage_progress;
+      double t0 = rkbench::now();
+            DemarcatingResult res = compute_demarcating(m, p);
+      double t = rkbench::now() - t0;
+      rkbench::stage_progress(100, "");
+      if (t < best) best = t, best_stages = rkbench::g_stages.time;
+      peak = std::max(peak, mem.grown_mib());
       segments = res.curves.segments.size();
     }
     std::printf("\n%d faces, %d vertices: %.3f s (%.3f s per M faces), peak +%.0f MiB, %zu curve segments\n",
-                m.n_faces(), m.n_vertices(), best, best / (m.n_faces() / 1e6), peak / 1024.0, segments);
+                m.n_faces(), m.n_vertices(), best, best / (m.n_faces() / 1e6), peak, segments);
     for (const auto& kv : best_stages)
       if (!kv.first.empty()) std::printf("  %-28s %.3f s\n", kv.first.c_str(), kv.second);
   }

@@ -48,8 +48,9 @@ void parameters(MeshModel& m, RichParameterList& par) {
   double h = mean_edge_length(m);
   double diag = m.cm.bbox.Diag() > 0 ? m.cm.bbox.Diag() : 1.0;
   par.addParam(RichEnum("estimator", 0, kEstimators, "Estimator",
-                        "How curvature is measured. The jet fit is accurate also on irregular scans; the "
-                        "per-face fit is about twice as fast."));
+                        "How curvature is measured. The jet fit is accurate also on irregular scans. The "
+                        "per-face fit is a little faster and fine for curvature on regular meshes, but its "
+                        "derivatives (dcurv_*) are unreliable on irregular triangulations."));
   par.addParam(RichAbsPerc("presmoothing", float(h), 0.f, float(diag / 10), "Pre-smoothing scale",
                            "Removes scanner noise smaller than this distance before measuring (a Gaussian "
                            "scale, in the mesh's units). The default is the mean edge length; 0 turns it "

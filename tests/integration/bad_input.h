@@ -1,0 +1,19 @@
+// The bad-input cases every filter must survive, run through meshlabserver: a point cloud, an
+// empty mesh and NaN coordinates must give a clear message; non-manifold, degenerate and
+// isolated elements, and a flat plane, a successful run. Never a crash.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "reliefkit/mesh.h"
+#include "server.h"
+
+namespace rktest {
+
+using FilterRun = std::function<ServerRun(const std::string& name, const reliefkit::TriMesh& mesh)>;
+
+/// Runs all the cases with `run` and records gtest failures.
+void expect_bad_input_handled(const FilterRun& run);
+
+}  // namespace rktest
