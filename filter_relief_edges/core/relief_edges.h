@@ -36,7 +36,7 @@ struct ReliefEdgeParams {
   static constexpr double kDefaultBaseScaleEdges = 15.0;     // x mean edge length
   static constexpr double kDefaultEdgeSmoothing = 0.8;       // x median edge length (thesis 4.4)
   static constexpr double kDefaultMinLengthEdges = 2.0;      // x mean edge length
-  static constexpr double kDefaultFitRadiusEdges = 2.0;      // x mean edge length (the jet's two-ring)
+  static constexpr double kDefaultFitRadiusEdges = 4.0;      // x mean edge length (see relief_edges.md)
   CurvatureEstimator estimator = CurvatureEstimator::Jet;
   double presmoothing = -1, base_scale = -1, edge_smoothing = -1, min_length = -1, fit_radius = -1;
   bool restrict_orientation = true;

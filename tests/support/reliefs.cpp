@@ -91,12 +91,15 @@ Relief discs_on_cylinder(const ReliefShape& s, int nu, int nz) {
 }
 
 Relief squares_on_cylinder(const ReliefShape& s) {
-  const double R = 1, A1 = 0.6, A2 = 0.45;
+  // Squares with sharp but smooth corners: superellipses |x|^p + |z|^p = a^p, p = 8 (the distance
+  // field (|x|^p + |z|^p)^(1/p) is smooth away from the centre; a Chebyshev max() would put a
+  // crease along the diagonals that no real relief has).
+  const double R = 1, A1 = 0.6, A2 = 0.45, P = 8;
   Relief r;
   r.mesh = cylinder(R, 2, 400, 128, s.jitter, s.seed);
-  auto cheb = [](double x, double y) { return std::max(std::abs(x), std::abs(y)); };
+  auto dist = [&](double x, double y) { return std::pow(std::pow(std::abs(x), P) + std::pow(std::abs(y), P), 1 / P); };
   auto height = [&](double arc, double z) {
-    double d1 = cheb(arc, z), d2 = cheb(std::remainder(arc - M_PI * R, 2 * M_PI * R), z);
+    double d1 = dist(arc, z), d2 = dist(std::remainder(arc - M_PI * R, 2 * M_PI * R), z);
     return s.height * step(A1 - d1, s.width) - s.height * step(A2 - d2, s.width);
   };
   for (auto& p : r.mesh.vertices) {
@@ -106,14 +109,15 @@ Relief squares_on_cylinder(const ReliefShape& s) {
     p += n * height(u * R, p.z());
   }
   for (auto [half, center, sign] : {std::tuple{A1, 0.0, 1.0}, std::tuple{A2, M_PI * R, -1.0}})
-    for (int k = 0; k < 4000; ++k) {  // perimeter of the square, 1000 samples a side
-      double t = -half + 2 * half * (k % 1000) / 1000.0;
+    for (int k = 0; k < 8000; ++k) {  // superellipse outline: x(z) and z(x) on each side, evenly
+      double t = -half + 2 * half * (k % 2000) / 2000.0;
+      double o = std::pow(std::pow(half, P) - std::pow(std::abs(t), P), 1 / P);
       double x = 0, z = 0;
-      switch (k / 1000) {
-        case 0: x = t, z = -half; break;
-        case 1: x = half, z = t; break;
-        case 2: x = -t, z = half; break;
-        default: x = -half, z = -t; break;
+      switch (k / 2000) {
+        case 0: x = o, z = t; break;
+        case 1: x = -o, z = t; break;
+        case 2: x = t, z = o; break;
+        default: x = t, z = -o; break;
       }
       double u = (center + x) / R;
       r.boundary.push_back(Vec3(std::cos(u), std::sin(u), 0) * (R + sign * 0.5 * s.height) + Vec3(0, 0, z));

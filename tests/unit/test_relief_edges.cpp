@@ -82,7 +82,7 @@ struct Case {
 rktest::Relief sph(const rktest::ReliefShape& s) { return rktest::disc_on_sphere(s); }
 rktest::Relief cyl(const rktest::ReliefShape& s) { return rktest::discs_on_cylinder(s); }
 rktest::Relief sq(const rktest::ReliefShape& s) { return rktest::squares_on_cylinder(s); }
-const Case kCurved[] = {{"disc on sphere", sph}, {"discs on cylinder", cyl}};
+const Case kCurved[] = {{"disc on sphere", sph}, {"discs on cylinder", cyl}, {"squares on cylinder", sq}};
 }  // namespace
 
 TEST(ReliefEdgesReliefs, NoiseFree) {
@@ -111,24 +111,6 @@ TEST(ReliefEdgesReliefs, NoisyBeatDemarcatingCurves) {
       EXPECT_GE(re.recall, dc.recall - 0.01) << c.name << " " << noise;
       EXPECT_GT(re.precision, dc.precision) << c.name << " " << noise;
     }
-}
-
-// Sharp corners: curvature-based edges round a corner off over about the step's width, so on
-// squares 40 to 50 edge lengths wide the recall stays near 0.93 - below the 0.95 that the issue
-// asks of smooth outlines (measured; see docs). Precision stays above demarcating curves'.
-TEST(ReliefEdgesReliefs, SharpCornersOnACylinder) {
-  for (double noise : {0.0, 0.10, 0.15}) {
-    rktest::ReliefShape s;
-    s.noise = noise;
-    rktest::Relief r = rktest::squares_on_cylinder(s);
-    rktest::Detection re = rktest::score(r, compute_relief_edges(r.mesh).edges, r.mean_edge);
-    rktest::Detection dc = rktest::score(r, compute_demarcating(r.mesh).curves, r.mean_edge);
-    std::printf("squares on cylinder, noise %.0f%%: relief edges %.3f / %.3f, demarcating curves %.3f / %.3f\n",
-                100 * noise, re.recall, re.precision, dc.recall, dc.precision);
-    EXPECT_GE(re.recall, 0.92);
-    EXPECT_GE(re.precision, 0.90);
-    EXPECT_GT(re.precision, dc.precision);
-  }
 }
 
 // Gaussian grooves and crests on a plane: valley lines along the groove bottoms, ridge lines
