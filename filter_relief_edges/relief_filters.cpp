@@ -67,10 +67,10 @@ void relief_parameters(MeshModel& m, RichParameterList& par) {
   const double h = mean_edge_length(m);
   add_presmoothing(m, par, h);
   add_base_scale(m, par, h);
-  par.addParam(RichAbsPerc("edge_smoothing", float(ReliefEdgeParams::kDefaultEdgeSmoothing * h), 0.f,
+  par.addParam(RichAbsPerc("edge_smoothing", float(ReliefEdgeParams::kDefaultEdgeSmoothing * median_edge_length(m)), 0.f,
                            float(m.cm.bbox.Diag() > 0 ? m.cm.bbox.Diag() / 10 : 1.0), "Edge smoothing",
-                           "Smooths jagged edges (a Gaussian scale, in mesh units). Default: 0.8 edge lengths; 0 "
-                           "turns it off."));
+                           "Smooths jagged edges (a Gaussian scale, in mesh units). Default: 0.8 of the median edge "
+                           "length (as in the thesis); 0 turns it off."));
   par.addParam(RichBool("restrict", true, "Use the base surface for directions",
                         "Limits the edge directions to those the base surface allows; helps on noisy scans."));
   par.addParam(RichFloat("strong_error", 0.5f, "Model error, strong edges",

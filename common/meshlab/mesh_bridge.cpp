@@ -1,5 +1,6 @@
 #include "mesh_bridge.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace reliefkit::ml {
@@ -67,6 +68,22 @@ double mean_edge_length(MeshModel& m) {
   if (n > 0 && sum > 0) return sum / n;
   double diag = m.cm.bbox.Diag();
   return std::isfinite(diag) && diag > 0 ? diag / 100 : 1.0;
+}
+
+double median_edge_length(MeshModel& m) {
+  std::vector<float> len;
+  len.reserve(size_t(m.cm.fn) * 3);
+  for (const auto& f : m.cm.face) {
+    if (f.IsD()) continue;
+    for (int j = 0; j < 3; ++j) {
+      float l = float(vcg::Distance(f.cV(j)->cP(), f.cV((j + 1) % 3)->cP()));
+      if (std::isfinite(l)) len.push_back(l);
+    }
+  }
+  if (len.empty()) return 0;
+  auto mid = len.begin() + len.size() / 2;
+  std::nth_element(len.begin(), mid, len.end());
+  return *mid;
 }
 
 QString thousands(long long n) {

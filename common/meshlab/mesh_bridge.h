@@ -38,6 +38,9 @@ void write_vertex_vectors(CMeshO& m, const View& v, const char* name, const std:
 /// diagonal when the layer has no faces.
 double mean_edge_length(MeshModel& m);
 
+/// Median edge length of the layer (0 when it has no faces).
+double median_edge_length(MeshModel& m);
+
 /// "12,345" — numbers in log lines.
 QString thousands(long long n);
 
