@@ -110,6 +110,7 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
 #endif
   std::vector<std::vector<Crossing>> per_thread(nthreads);
   std::vector<std::vector<int>> seg_faces(nthreads);
+  std::vector<std::vector<double>> strengths(opt.all_strengths ? nthreads : 0);
   long long rejected = 0;
 
 #pragma omp parallel reduction(+ : rejected)
@@ -186,8 +187,9 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
         ++found;
       }
       if (found != 2) continue;
-      if (0.5 * (cr[0].s + cr[1].s) < opt.min_strength) continue;
       if (opt.accept_face && !opt.accept_face(fi, val, t)) continue;
+      if (opt.all_strengths) strengths[tid].push_back(0.5 * (cr[0].s + cr[1].s));
+      if (0.5 * (cr[0].s + cr[1].s) < opt.min_strength) continue;
       int seg = static_cast<int>(sf.size());
       cr[0].slot = seg * 2;
       cr[1].slot = seg * 2 + 1;
@@ -197,6 +199,10 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
     }
   }
 
+  if (opt.all_strengths) {
+    opt.all_strengths->clear();
+    for (const auto& v : strengths) opt.all_strengths->insert(opt.all_strengths->end(), v.begin(), v.end());
+  }
   // Concatenate per-thread results (deterministic order) and merge points on shared edges.
   Polylines res;
   res.rejected_faces = rejected;
@@ -279,6 +285,10 @@ double automatic_curve_threshold(double noise_scale, const Polylines& all) {
   std::vector<double> st;
   st.reserve(all.segments.size());
   for (const auto& sg : all.segments) st.push_back(0.5 * (all.strength[sg[0]] + all.strength[sg[1]]));
+  return automatic_curve_threshold(noise_scale, std::move(st));
+}
+
+double automatic_curve_threshold(double noise_scale, std::vector<double> st) {
   double top = 0;
   if (!st.empty()) {
     auto k = st.begin() + static_cast<long>(kTopPercentile * double(st.size() - 1));

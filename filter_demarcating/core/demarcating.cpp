@@ -86,6 +86,7 @@ Polylines demarcating_curves(const TriMesh& mesh, const Curvature& c, const Curv
   ZeroCrossingOptions zo;
   zo.max_angle = opt.max_angle;
   zo.min_strength = opt.min_strength;
+  zo.all_strengths = opt.all_strengths;
   Polylines p = extract_zero_crossings(mesh, c.normal, field, zo);
   return opt.min_length > 0 ? drop_short_chains(p, opt.min_length) : p;
 }
@@ -106,13 +107,17 @@ DemarcatingResult compute_demarcating(const TriMesh& mesh, const DemarcatingPara
   r.gradient = curvature_gradient(r.curvature);
   r.median_strength = median_strength(r.gradient);
   if (p.progress) p.progress(92, "Demarcating curves");
+  // The threshold is at least relative x the noise term, so weaker segments need not be built:
+  // only their strengths are collected, for the automatic threshold's percentile.
   DemarcatingOptions o;
-  o.min_strength = 0;
+  o.min_strength = p.relative_threshold * kNoiseFactor * r.median_strength;
   o.max_angle = p.max_angle;
-  Polylines all = demarcating_curves(mesh, r.curvature, r.gradient, o);
-  r.automatic_threshold = automatic_curve_threshold(r.median_strength, all);
+  std::vector<double> strengths;
+  o.all_strengths = &strengths;
+  Polylines candidates = demarcating_curves(mesh, r.curvature, r.gradient, o);
+  r.automatic_threshold = automatic_curve_threshold(r.median_strength, std::move(strengths));
   r.threshold = p.relative_threshold * r.automatic_threshold;
-  r.curves = drop_short_chains(keep_strong_segments(all, r.threshold), r.min_length);
+  r.curves = drop_short_chains(keep_strong_segments(candidates, r.threshold), r.min_length);
   return r;
 }
 

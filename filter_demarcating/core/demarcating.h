@@ -50,6 +50,7 @@ struct DemarcatingOptions {
   double min_strength = 0;              // absolute strength threshold (1/length^2)
   double max_angle = 0.78539816339744831;  // direction-consistency angle (pi/4, thesis 3.3.2)
   double min_length = 0;                // drop curves shorter than this (mesh units)
+  std::vector<double>* all_strengths = nullptr;  // see ZeroCrossingOptions::all_strengths
 };
 
 /// The demarcating curves: zero crossings of k(g_p) along g_p (shared extraction, with the

@@ -5,7 +5,8 @@
 
 namespace reliefkit {
 
-Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength) {
+Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength,
+                      std::vector<double>* all_strengths) {
   if (c.dcurv.size() != c.k1.size()) throw InputError("ridges and valleys need the curvature derivative tensor");
   const int nv = mesh.n_vertices();
   std::vector<double> value(nv), strength(nv);
@@ -26,6 +27,7 @@ Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, dou
   };
   ZeroCrossingOptions o;
   o.min_strength = min_strength;
+  o.all_strengths = all_strengths;
   // Keep maxima of k1 (the derivative decreases along t1) for ridges, minima of k2 for valleys:
   // the gradient of the linearly interpolated derivative across the face, against the face's
   // mean direction.
@@ -58,12 +60,15 @@ RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyP
   // Noise scale: the median magnitude of the curvature that each kind thresholds.
   std::vector<double> kmax(r.curvature.k1.size()), kmin(r.curvature.k2.size());
   for (size_t v = 0; v < kmax.size(); ++v) kmax[v] = std::abs(r.curvature.k1[v]), kmin[v] = std::abs(r.curvature.k2[v]);
-  Polylines all_r = ridge_lines(mesh, r.curvature, false, 0.0);
-  Polylines all_v = ridge_lines(mesh, r.curvature, true, 0.0);
-  r.ridge_threshold = p.relative_threshold * automatic_curve_threshold(median_positive(kmax), all_r);
-  r.valley_threshold = p.relative_threshold * automatic_curve_threshold(median_positive(kmin), all_v);
-  r.ridges = drop_short_chains(keep_strong_segments(all_r, r.ridge_threshold), r.min_length);
-  r.valleys = drop_short_chains(keep_strong_segments(all_v, r.valley_threshold), r.min_length);
+  // Segments below relative x the noise term are never kept: only their strengths are collected.
+  const double noise_r = median_positive(kmax), noise_v = median_positive(kmin);
+  std::vector<double> str_r, str_v;
+  Polylines cand_r = ridge_lines(mesh, r.curvature, false, p.relative_threshold * kNoiseFactor * noise_r, &str_r);
+  Polylines cand_v = ridge_lines(mesh, r.curvature, true, p.relative_threshold * kNoiseFactor * noise_v, &str_v);
+  r.ridge_threshold = p.relative_threshold * automatic_curve_threshold(noise_r, std::move(str_r));
+  r.valley_threshold = p.relative_threshold * automatic_curve_threshold(noise_v, std::move(str_v));
+  r.ridges = drop_short_chains(keep_strong_segments(cand_r, r.ridge_threshold), r.min_length);
+  r.valleys = drop_short_chains(keep_strong_segments(cand_v, r.valley_threshold), r.min_length);
   return r;
 }
 

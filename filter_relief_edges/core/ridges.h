@@ -32,7 +32,10 @@ struct RidgeValleyResult {
 };
 
 /// Ridges or valleys from an existing curvature (with derivatives); threshold absolute.
-Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength);
+/// `all_strengths` (optional) receives the strengths of all crossing segments (see
+/// ZeroCrossingOptions::all_strengths).
+Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength,
+                      std::vector<double>* all_strengths = nullptr);
 
 RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyParams& params = {});
 

@@ -54,6 +54,10 @@ struct ZeroCrossingOptions {
   /// Optional extra test of a crossed face: face id, the three vertex values and directions
   /// used (after the consistency rule). Ridges use it to keep maxima and drop minima.
   std::function<bool(int face, const double value[3], const Vec3 direction[3])> accept_face;
+  /// When set, receives the strength of every crossed face's segment, also of those below
+  /// `min_strength`: the distribution an automatic threshold needs, without building (and
+  /// merging) the weak segments.
+  std::vector<double>* all_strengths = nullptr;
 };
 
 struct Polylines {
@@ -93,6 +97,8 @@ constexpr double kNoiseFactor = 2.0;
 constexpr double kTopFactor = 0.25;
 constexpr double kTopPercentile = 0.90;
 double automatic_curve_threshold(double noise_scale, const Polylines& all_crossings);
+/// The same from the strengths of all crossing segments (ZeroCrossingOptions::all_strengths).
+double automatic_curve_threshold(double noise_scale, std::vector<double> segment_strengths);
 
 /// Median of the positive finite values (0 if none).
 double median_positive(const std::vector<double>& values);
