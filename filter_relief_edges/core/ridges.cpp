@@ -57,11 +57,20 @@ RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyP
   co.progress = p.progress;
   r.curvature = compute_curvature(mesh, co);
   if (p.progress) p.progress(90, "Ridges and valleys");
-  // Noise scale: the median magnitude of the curvature that each kind thresholds.
   std::vector<double> kmax(r.curvature.k1.size()), kmin(r.curvature.k2.size());
   for (size_t v = 0; v < kmax.size(); ++v) kmax[v] = std::abs(r.curvature.k1[v]), kmin[v] = std::abs(r.curvature.k2[v]);
   // Segments below relative x the noise term are never kept: only their strengths are collected.
-  const double noise_r = median_positive(kmax), noise_v = median_positive(kmin);
+  // Noise scale: the median curvature magnitude, but at least 1 % of the 99th percentile: on
+  // exactly flat (synthetic) regions the median is ~0 and numerical wiggles of the derivative
+  // would pass as ridges.
+  auto noise_scale = [](std::vector<double> k) {
+    double med = median_positive(k);
+    if (k.empty()) return med;
+    auto p99 = k.begin() + static_cast<long>(0.99 * double(k.size() - 1));
+    std::nth_element(k.begin(), p99, k.end());
+    return std::max(med, 0.01 * *p99);
+  };
+  const double noise_r = noise_scale(kmax), noise_v = noise_scale(kmin);
   std::vector<double> str_r, str_v;
   Polylines cand_r = ridge_lines(mesh, r.curvature, false, p.relative_threshold * kNoiseFactor * noise_r, &str_r);
   Polylines cand_v = ridge_lines(mesh, r.curvature, true, p.relative_threshold * kNoiseFactor * noise_v, &str_v);

@@ -103,6 +103,7 @@ TEST(ReliefFilters, RidgesAndValleysLayers) {
     return len;
   };
   EXPECT_GT(covered(valleys, 0.0), 0.9 * 2.0);
+  for (const auto& p : valleys.mesh.vertices) EXPECT_LT(std::abs(p.x()), h) << "a valley off the groove bottom";
   EXPECT_GT(covered(ridges, std::sqrt(3.0) * 0.05), 0.8 * 2.0);
   EXPECT_GT(covered(ridges, -std::sqrt(3.0) * 0.05), 0.8 * 2.0);
 }
