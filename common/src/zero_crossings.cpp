@@ -289,6 +289,8 @@ double automatic_curve_threshold(double noise_scale, const Polylines& all) {
 }
 
 double automatic_curve_threshold(double noise_scale, std::vector<double> st) {
+  // Segments of negative strength (a ridge where k1 < 0) are no candidates at all.
+  st.erase(std::remove_if(st.begin(), st.end(), [](double x) { return !(x >= 0); }), st.end());
   double top = 0;
   if (!st.empty()) {
     auto k = st.begin() + static_cast<long>(kTopPercentile * double(st.size() - 1));
