@@ -42,11 +42,7 @@ TEST(DemarcatingFilter, CurveLayerLiesOnTheStep) {
   EXPECT_NE(run.output.find("in \u2013 demarcating curves"), std::string::npos) << run.output;
   MeshFile curves = read_mesh(dir + "/curves.obj");
   ASSERT_GT(curves.edges.size(), 100u);
-  reliefkit::Polylines p;
-  p.points = curves.mesh.vertices;
-  p.strength.assign(p.points.size(), 1);
-  p.segments = curves.edges;
-  Detection d = score(r, p, r.mean_edge);
+  Detection d = score(r, polylines_of(curves), r.mean_edge);
   EXPECT_GE(d.recall, 0.85);
   EXPECT_GE(d.precision, 0.80);
 }

@@ -30,13 +30,6 @@ std::string ridges_filter(double h) {
                     {param_float("threshold", 1), param_absperc("presmoothing", h), param_float("min_length", 4)});
 }
 
-reliefkit::Polylines as_polylines(const MeshFile& f) {
-  reliefkit::Polylines p;
-  p.points = f.mesh.vertices;
-  p.strength.assign(p.points.size(), 1);
-  p.segments = f.edges;
-  return p;
-}
 
 }  // namespace
 
@@ -52,7 +45,7 @@ TEST(ReliefFilters, ReliefEdgesOnANoisyCylinder) {
   EXPECT_NE(run.output.find("in \u2013 relief edges"), std::string::npos) << run.output;
   MeshFile edges = read_mesh(dir + "/edges.obj");
   ASSERT_GT(edges.edges.size(), 100u);
-  Detection d = score(r, as_polylines(edges), r.mean_edge);
+  Detection d = score(r, polylines_of(edges), r.mean_edge);
   EXPECT_GE(d.recall, 0.90);
   EXPECT_GE(d.precision, 0.85);
 }

@@ -127,6 +127,14 @@ MeshFile read_mesh(const std::string& path) {
   return ext == ".obj" ? read_obj(path) : read_ply(path);
 }
 
+reliefkit::Polylines polylines_of(const MeshFile& f) {
+  reliefkit::Polylines p;
+  p.points = f.mesh.vertices;
+  p.strength.assign(p.points.size(), 1);
+  p.segments = f.edges;
+  return p;
+}
+
 void write_ply(const std::string& path, const reliefkit::TriMesh& m) {
   std::ofstream out(path, std::ios::binary);
   out << "ply\nformat binary_little_endian 1.0\nelement vertex " << m.vertices.size()

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "reliefkit/mesh.h"
+#include "reliefkit/zero_crossings.h"
 
 namespace rktest {
 
@@ -18,6 +19,9 @@ struct MeshFile {
 
 /// Reads a PLY or OBJ file (by extension). Throws std::runtime_error on failure.
 MeshFile read_mesh(const std::string& path);
+
+/// The edges of a saved curve layer as polylines (strength 1 everywhere), for scoring.
+reliefkit::Polylines polylines_of(const MeshFile& curves);
 
 /// Writes a binary little-endian PLY with float coordinates (NaNs are written as they are).
 void write_ply(const std::string& path, const reliefkit::TriMesh& mesh);
