@@ -395,6 +395,16 @@ static Curvature compute_curvature_jets(const TriMesh& mesh, const CurvatureOpti
   return out;
 }
 
+Curvature compute_curvature(const TriMesh& mesh, CurvatureEstimator estimator, double smoothing_scale,
+                            Progress progress) {
+  CurvatureOptions co;
+  co.estimator = estimator;
+  co.smoothing_scale = smoothing_scale;
+  co.derivatives = true;
+  co.progress = progress;
+  return compute_curvature(mesh, co);
+}
+
 Curvature compute_curvature(const TriMesh& input, const CurvatureOptions& opt) {
   require_triangles(input);
   report(opt.progress, 0, "Vertex adjacency");

@@ -95,14 +95,9 @@ DemarcatingResult compute_demarcating(const TriMesh& mesh, const DemarcatingPara
   require_triangles(mesh);
   DemarcatingResult r;
   r.mean_edge = mean_edge_length(mesh);
-  r.presmoothing = p.presmoothing >= 0 ? p.presmoothing : DemarcatingParams::kDefaultPresmoothingEdges * r.mean_edge;
-  r.min_length = p.min_length >= 0 ? p.min_length : DemarcatingParams::kDefaultMinLengthEdges * r.mean_edge;
-  CurvatureOptions co;
-  co.estimator = p.estimator;
-  co.smoothing_scale = r.presmoothing;
-  co.derivatives = true;
-  co.progress = p.progress;
-  r.curvature = compute_curvature(mesh, co);
+  r.presmoothing = length_or_default(p.presmoothing, DemarcatingParams::kDefaultPresmoothingEdges, r.mean_edge);
+  r.min_length = length_or_default(p.min_length, DemarcatingParams::kDefaultMinLengthEdges, r.mean_edge);
+  r.curvature = compute_curvature(mesh, p.estimator, r.presmoothing, p.progress);
   if (p.progress) p.progress(85, "Curvature gradient");
   r.gradient = curvature_gradient(r.curvature);
   r.median_strength = median_strength(r.gradient);

@@ -53,18 +53,14 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
   ReliefEdgeResult r;
   r.mean_edge = mean_edge_length(mesh);
   const double h = r.mean_edge;
-  r.presmoothing = p.presmoothing >= 0 ? p.presmoothing : ReliefEdgeParams::kDefaultPresmoothingEdges * h;
+  r.presmoothing = length_or_default(p.presmoothing, ReliefEdgeParams::kDefaultPresmoothingEdges, h);
   r.base_scale = p.base_scale > 0 ? p.base_scale : ReliefEdgeParams::kDefaultBaseScaleEdges * h;
   r.edge_smoothing =
       p.edge_smoothing >= 0 ? p.edge_smoothing : ReliefEdgeParams::kDefaultEdgeSmoothing * median_edge_length(mesh);
-  r.min_length = p.min_length >= 0 ? p.min_length : ReliefEdgeParams::kDefaultMinLengthEdges * h;
+  r.min_length = length_or_default(p.min_length, ReliefEdgeParams::kDefaultMinLengthEdges, h);
   const double radius = p.fit_radius > 0 ? p.fit_radius : ReliefEdgeParams::kDefaultFitRadiusEdges * h;
 
-  CurvatureOptions co;
-  co.estimator = p.estimator;
-  co.smoothing_scale = r.presmoothing;
-  co.progress = p.progress;
-  r.curvature = compute_curvature(mesh, co);
+  r.curvature = compute_curvature(mesh, p.estimator, r.presmoothing, p.progress);
   const Curvature& c = r.curvature;
   const int nv = mesh.n_vertices();
 

@@ -49,13 +49,9 @@ RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyP
   require_triangles(mesh);
   RidgeValleyResult r;
   r.mean_edge = mean_edge_length(mesh);
-  r.presmoothing = p.presmoothing >= 0 ? p.presmoothing : RidgeValleyParams::kDefaultPresmoothingEdges * r.mean_edge;
-  r.min_length = p.min_length >= 0 ? p.min_length : RidgeValleyParams::kDefaultMinLengthEdges * r.mean_edge;
-  CurvatureOptions co;
-  co.estimator = p.estimator;
-  co.smoothing_scale = r.presmoothing;
-  co.progress = p.progress;
-  r.curvature = compute_curvature(mesh, co);
+  r.presmoothing = length_or_default(p.presmoothing, RidgeValleyParams::kDefaultPresmoothingEdges, r.mean_edge);
+  r.min_length = length_or_default(p.min_length, RidgeValleyParams::kDefaultMinLengthEdges, r.mean_edge);
+  r.curvature = compute_curvature(mesh, p.estimator, r.presmoothing, p.progress);
   if (p.progress) p.progress(90, "Ridges and valleys");
   std::vector<double> kmax(r.curvature.k1.size()), kmin(r.curvature.k2.size());
   for (size_t v = 0; v < kmax.size(); ++v) kmax[v] = std::abs(r.curvature.k1[v]), kmin[v] = std::abs(r.curvature.k2[v]);

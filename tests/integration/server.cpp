@@ -1,5 +1,7 @@
 #include "server.h"
 
+#include "mesh_files.h"
+
 #include <sys/wait.h>
 
 #include <array>
@@ -80,5 +82,20 @@ std::string param_bool(const std::string& name, bool value) {
 }
 
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+ServerRun run_filters(const std::string& name, const reliefkit::TriMesh& mesh, const std::vector<std::string>& filters,
+                      std::vector<std::string> outputs, std::string* dir_out) {
+  const std::string dir = temp_dir(name);
+  write_ply(dir + "/in.ply", mesh);
+  write_text(dir + "/s.mlx", mlx_script(filters));
+  for (size_t i = 0; i + 1 < outputs.size(); ++i)
+    if (outputs[i] == "-o") outputs[i + 1] = dir + "/" + outputs[i + 1];
+  std::vector<std::string> args{"-i", dir + "/in.ply"};
+  args.insert(args.end(), outputs.begin(), outputs.end());
+  args.push_back("-s");
+  args.push_back(dir + "/s.mlx");
+  if (dir_out) *dir_out = dir;
+  return run_meshlabserver(args);
+}
 
 }  // namespace rktest

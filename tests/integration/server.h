@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "reliefkit/mesh.h"
+
 namespace rktest {
 
 struct ServerRun {
@@ -26,5 +28,12 @@ std::string param_absperc(const std::string& name, double value);
 std::string param_float(const std::string& name, double value);
 std::string param_bool(const std::string& name, bool value);
 void write_text(const std::string& path, const std::string& text);
+
+/// Writes `mesh` as <dir>/in.ply and the filters as <dir>/s.mlx in a fresh test directory
+/// `name`, runs meshlabserver on them with the output arguments (file names relative to the
+/// directory, e.g. {"-o", "out.ply", "-m", "vq"}), and returns the run; `dir` receives the
+/// directory.
+ServerRun run_filters(const std::string& name, const reliefkit::TriMesh& mesh, const std::vector<std::string>& filters,
+                      std::vector<std::string> outputs, std::string* dir = nullptr);
 
 }  // namespace rktest

@@ -14,21 +14,16 @@ namespace {
 
 const char* kFilter = "Compute Curvature Tensor and Derivatives";
 
-std::string curvature_script(const std::string& dir, int quality, int estimator = 0, double presmoothing = 0) {
-  std::string path = dir + "/curvature.mlx";
-  write_text(path, mlx_script({mlx_filter(kFilter, {param_enum("estimator", estimator, 2),
-                                                     param_absperc("presmoothing", presmoothing),
-                                                     param_enum("quality", quality, 6)})}));
-  return path;
+std::string curvature_filter(int quality, int estimator = 0, double presmoothing = 0) {
+  return mlx_filter(kFilter, {param_enum("estimator", estimator, 2), param_absperc("presmoothing", presmoothing),
+                              param_enum("quality", quality, 6)});
 }
 
 // Runs the filter on `mesh`; returns the saved per-vertex quality (empty on failure).
 MeshFile run_on(const std::string& name, const reliefkit::TriMesh& mesh, int quality, ServerRun* run_out,
                 int estimator = 0) {
-  std::string dir = temp_dir(name);
-  write_ply(dir + "/in.ply", mesh);
-  ServerRun r = run_meshlabserver(
-      {"-i", dir + "/in.ply", "-o", dir + "/out.ply", "-m", "vq", "-s", curvature_script(dir, quality, estimator)});
+  std::string dir;
+  ServerRun r = run_filters(name, mesh, {curvature_filter(quality, estimator)}, {"-o", "out.ply", "-m", "vq"}, &dir);
   if (run_out) *run_out = r;
   MeshFile out;
   try {

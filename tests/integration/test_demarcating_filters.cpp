@@ -34,10 +34,9 @@ TEST(DemarcatingFilter, CurveLayerLiesOnTheStep) {
   ReliefShape s;
   s.noise = 0.1;
   Relief r = disc_on_plane(s, 120);
-  std::string dir = temp_dir("demarcating_plane");
-  write_ply(dir + "/in.ply", r.mesh);
-  write_text(dir + "/s.mlx", mlx_script({demarcating_filter(1, r.mean_edge)}));
-  ServerRun run = run_meshlabserver({"-i", dir + "/in.ply", "-o", dir + "/curves.obj", "-l", "1", "-s", dir + "/s.mlx"});
+  std::string dir;
+  ServerRun run =
+      run_filters("demarcating_plane", r.mesh, {demarcating_filter(1, r.mean_edge)}, {"-o", "curves.obj", "-l", "1"}, &dir);
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("in \u2013 demarcating curves"), std::string::npos) << run.output;
   MeshFile curves = read_mesh(dir + "/curves.obj");
@@ -49,11 +48,9 @@ TEST(DemarcatingFilter, CurveLayerLiesOnTheStep) {
 
 TEST(DemarcatingFilter, ShadingIsLightOnTheShoulderDarkAtTheFoot) {
   Relief r = disc_on_plane({}, 120);
-  std::string dir = temp_dir("shading_plane");
-  write_ply(dir + "/in.ply", r.mesh);
-  write_text(dir + "/s.mlx", mlx_script({shading_filter(r.mean_edge, false)}));
+  std::string dir;
   ServerRun run =
-      run_meshlabserver({"-i", dir + "/in.ply", "-o", dir + "/out.ply", "-m", "vc", "-s", dir + "/s.mlx"});
+      run_filters("shading_plane", r.mesh, {shading_filter(r.mean_edge, false)}, {"-o", "out.ply", "-m", "vc"}, &dir);
   ASSERT_EQ(run.status, 0) << run.output;
   MeshFile out = read_mesh(dir + "/out.ply");
   const auto& red = out.vertex_props["red"];
@@ -95,11 +92,8 @@ TEST(DemarcatingFilter, MainJobScriptOnTheCoin) {
 class DemarcatingBadInput : public ::testing::TestWithParam<int> {
  protected:
   ServerRun run(const std::string& name, const reliefkit::TriMesh& m) {
-    std::string dir = temp_dir(name + std::to_string(GetParam()));
-    write_ply(dir + "/in.ply", m);
     std::string f = GetParam() == 0 ? demarcating_filter(1, 0.05) : shading_filter(0.05);
-    write_text(dir + "/s.mlx", mlx_script({f}));
-    return run_meshlabserver({"-i", dir + "/in.ply", "-o", dir + "/out.ply", "-m", "vc", "-s", dir + "/s.mlx"});
+    return run_filters(name + std::to_string(GetParam()), m, {f}, {"-o", "out.ply", "-m", "vc"});
   }
 };
 

@@ -37,10 +37,9 @@ TEST(ReliefFilters, ReliefEdgesOnANoisyCylinder) {
   ReliefShape s;
   s.noise = 0.15;
   Relief r = discs_on_cylinder(s);
-  std::string dir = temp_dir("relief_cylinder");
-  write_ply(dir + "/in.ply", r.mesh);
-  write_text(dir + "/s.mlx", mlx_script({relief_filter(r.mean_edge)}));
-  ServerRun run = run_meshlabserver({"-i", dir + "/in.ply", "-o", dir + "/edges.obj", "-l", "1", "-s", dir + "/s.mlx"});
+  std::string dir;
+  ServerRun run =
+      run_filters("relief_cylinder", r.mesh, {relief_filter(r.mean_edge)}, {"-o", "edges.obj", "-l", "1"}, &dir);
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("in \u2013 relief edges"), std::string::npos) << run.output;
   MeshFile edges = read_mesh(dir + "/edges.obj");
@@ -52,10 +51,8 @@ TEST(ReliefFilters, ReliefEdgesOnANoisyCylinder) {
 
 TEST(ReliefFilters, BaseNormalsTiltIsLargeOnTheFlanksOnly) {
   Relief r = disc_on_plane({}, 100);
-  std::string dir = temp_dir("base_plane");
-  write_ply(dir + "/in.ply", r.mesh);
-  write_text(dir + "/s.mlx", mlx_script({base_filter(r.mean_edge)}));
-  ServerRun run = run_meshlabserver({"-i", dir + "/in.ply", "-o", dir + "/out.ply", "-m", "vq", "-s", dir + "/s.mlx"});
+  std::string dir;
+  ServerRun run = run_filters("base_plane", r.mesh, {base_filter(r.mean_edge)}, {"-o", "out.ply", "-m", "vq"}, &dir);
   ASSERT_EQ(run.status, 0) << run.output;
   MeshFile out = read_mesh(dir + "/out.ply");
   const auto& q = out.vertex_props["quality"];
@@ -76,11 +73,9 @@ TEST(ReliefFilters, RidgesAndValleysLayers) {
   reliefkit::TriMesh m = height_field([](double x, double) { return -0.05 * std::exp(-x * x / (2 * 0.05 * 0.05)); },
                                       1.0, 120, 0.3, 2);
   double h = reliefkit::mean_edge_length(m);
-  std::string dir = temp_dir("ridges_groove");
-  write_ply(dir + "/in.ply", m);
-  write_text(dir + "/s.mlx", mlx_script({ridges_filter(h)}));
-  ServerRun run = run_meshlabserver({"-i", dir + "/in.ply", "-o", dir + "/ridges.obj", "-l", "1", "-o",
-                                     dir + "/valleys.obj", "-l", "2", "-s", dir + "/s.mlx"});
+  std::string dir;
+  ServerRun run = run_filters("ridges_groove", m, {ridges_filter(h)},
+                              {"-o", "ridges.obj", "-l", "1", "-o", "valleys.obj", "-l", "2"}, &dir);
   ASSERT_EQ(run.status, 0) << run.output;
   MeshFile valleys = read_mesh(dir + "/valleys.obj");
   MeshFile ridges = read_mesh(dir + "/ridges.obj");
@@ -104,12 +99,9 @@ TEST(ReliefFilters, RidgesAndValleysLayers) {
 class ReliefBadInput : public ::testing::TestWithParam<int> {
  protected:
   ServerRun run(const std::string& name, const reliefkit::TriMesh& m) {
-    std::string dir = temp_dir(name + std::to_string(GetParam()));
-    write_ply(dir + "/in.ply", m);
     const double h = 0.05;
     std::string f = GetParam() == 0 ? relief_filter(h) : GetParam() == 1 ? base_filter(h) : ridges_filter(h);
-    write_text(dir + "/s.mlx", mlx_script({f}));
-    return run_meshlabserver({"-i", dir + "/in.ply", "-o", dir + "/out.ply", "-s", dir + "/s.mlx"});
+    return run_filters(name + std::to_string(GetParam()), m, {f}, {"-o", "out.ply"});
   }
 };
 

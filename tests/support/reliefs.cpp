@@ -30,6 +30,18 @@ double seg_dist(const Vec3& p, const Vec3& a, const Vec3& b) {
   return (p - (a + t * ab)).norm();
 }
 
+// Displaces the cylinder's vertices along its normal by height(arc length, z); records the
+// base normals.
+template <class Height>
+void emboss_cylinder(Relief& r, double R, const Height& height) {
+  for (auto& p : r.mesh.vertices) {
+    double u = std::atan2(p.y(), p.x());
+    Vec3 n(std::cos(u), std::sin(u), 0);
+    r.base_normal.push_back(n);
+    p += n * height(u * R, p.z());
+  }
+}
+
 }  // namespace
 
 Relief disc_on_plane(const ReliefShape& s, int n) {
@@ -73,12 +85,7 @@ Relief discs_on_cylinder(const ReliefShape& s, int nu, int nz) {
     double d1 = std::hypot(arc, z), d2 = std::hypot(std::remainder(arc - M_PI * R, 2 * M_PI * R), z);
     return s.height * step(R1 - d1, s.width) - s.height * step(R2 - d2, s.width);
   };
-  for (auto& p : r.mesh.vertices) {
-    double u = std::atan2(p.y(), p.x());
-    Vec3 n(std::cos(u), std::sin(u), 0);
-    r.base_normal.push_back(n);
-    p += n * height(u * R, p.z());
-  }
+  emboss_cylinder(r, R, height);
   for (int k = 0; k < 4000; ++k) {
     double a = 2 * M_PI * k / 4000;
     for (auto [rad, center, sign] : {std::tuple{R1, 0.0, 1.0}, std::tuple{R2, M_PI * R, -1.0}}) {
@@ -102,12 +109,7 @@ Relief squares_on_cylinder(const ReliefShape& s) {
     double d1 = dist(arc, z), d2 = dist(std::remainder(arc - M_PI * R, 2 * M_PI * R), z);
     return s.height * step(A1 - d1, s.width) - s.height * step(A2 - d2, s.width);
   };
-  for (auto& p : r.mesh.vertices) {
-    double u = std::atan2(p.y(), p.x());
-    Vec3 n(std::cos(u), std::sin(u), 0);
-    r.base_normal.push_back(n);
-    p += n * height(u * R, p.z());
-  }
+  emboss_cylinder(r, R, height);
   for (auto [half, center, sign] : {std::tuple{A1, 0.0, 1.0}, std::tuple{A2, M_PI * R, -1.0}})
     for (int k = 0; k < 8000; ++k) {  // superellipse outline: x(z) and z(x) on each side, evenly
       double t = -half + 2 * half * (k % 2000) / 2000.0;

@@ -76,6 +76,11 @@ struct Curvature {
 /// Runs in parallel (OpenMP) over faces and vertices; no result is NaN.
 Curvature compute_curvature(const TriMesh& mesh, const CurvatureOptions& options = {});
 
+/// Curvature and derivatives with pre-smoothing at `smoothing_scale` (mesh units): the first
+/// stage of every curve filter.
+Curvature compute_curvature(const TriMesh& mesh, CurvatureEstimator estimator, double smoothing_scale,
+                            Progress progress);
+
 /// Unit vertex normals by Max's weights (exact for vertices on a sphere). Vertices without a
 /// usable face get (0,0,1).
 std::vector<Vec3> vertex_normals(const TriMesh& mesh, const VertexFaces& vf);

@@ -46,6 +46,11 @@ EdgeStats edge_length_stats(const TriMesh& mesh);
 /// Mean edge length only (parallel, no sorting): the length scale of parameter defaults.
 double mean_edge_length(const TriMesh& mesh);
 
+/// A length parameter: `value` when it is given (>= 0), else `default_edges` mean edge lengths.
+inline double length_or_default(double value, double default_edges, double mean_edge) {
+  return value >= 0 ? value : default_edges * mean_edge;
+}
+
 /// Checks a mesh before a curvature computation. Throws InputError when the mesh has no
 /// faces (empty mesh or point cloud), a face refers to a missing vertex, or a coordinate is
 /// not finite. Degenerate faces and non-manifold elements are allowed (cores skip and count
