@@ -29,43 +29,54 @@ int main(int argc, char** argv) {
   const rkbench::Args args = rkbench::parse_args(argc, argv, {1000000});
   const int repeat = args.repeat;
   std::printf("ReliefKit curve filters (cores, defaults), %d threads, best of %d runs\n", omp_get_max_threads(), repeat);
-  std::printf("%-10s %-32s %9s %12s %10s %10s\n", "faces", "filter core", "time s", "s / M faces", "peak MiB",
-              "segments");
+  std::printf("%-10s %-32s %9s %12s %10s %10s %s\n", "faces", "filter core", "time s", "s / M faces", "peak MiB",
+              "segments", "recall / precision");
   for (long target : args.sizes) {
     // A raised and a sunken disc on a cylinder, 10 % normal noise, about `target` faces.
     rktest::ReliefShape shape;
     shape.noise = 0.1;
     const int nz = std::max(8, int(std::sqrt(target / 2.0 / M_PI)));
     const int nu = std::max(8, int(target / 2 / nz));
-    TriMesh m = rktest::discs_on_cylinder(shape, nu, nz).mesh;
+    const rktest::Relief relief = rktest::discs_on_cylinder(shape, nu, nz);
+    const TriMesh& m = relief.mesh;
+    // Each run returns its curves; they are scored against the relief's true outline, so a fast
+    // failure cannot pass as a speed-up. (Ridges and valleys are not outlines: not scored.)
     std::map<std::string, double> relief_stages;
-    const std::pair<const char*, std::function<size_t()>> runs[] = {
+    const std::pair<const char*, std::function<Polylines()>> runs[] = {
         {"Demarcating Curves",
          [&] {
            DemarcatingParams p;
-           return compute_demarcating(m, p).curves.segments.size();
+           return compute_demarcating(m, p).curves;
          }},
         {"Relief Edges (with base normals)",
          [&] {
            ReliefEdgeParams p;
            p.progress = rkbench::stage_progress;
-           return compute_relief_edges(m, p).edges.segments.size();
+           return compute_relief_edges(m, p).edges;
          }},
         {"Ridges and Valleys",
          [&] {
            RidgeValleyResult r = compute_ridges_valleys(m);
-           return r.ridges.segments.size() + r.valleys.segments.size();
+           Polylines both = r.ridges;  // segments counted: ridges and valleys
+           const int off = static_cast<int>(both.points.size());
+           both.points.insert(both.points.end(), r.valleys.points.begin(), r.valleys.points.end());
+           both.strength.insert(both.strength.end(), r.valleys.strength.begin(), r.valleys.strength.end());
+           for (const auto& sg : r.valleys.segments) both.segments.push_back({sg[0] + off, sg[1] + off});
+           return both;
          }}};
     for (const auto& [name, fn] : runs) {
       double best = 1e30;
       double peak = 0;
       size_t segs = 0;
+      rktest::Detection d{0, 0};
       for (int r = 0; r < repeat; ++r) {
         rkbench::PeakMemory mem;
         mem.start();
         rkbench::g_stages.start();
         double t0 = rkbench::now();
-                segs = fn();
+        Polylines curves = fn();
+        segs = curves.segments.size();
+        d = rktest::score(relief, curves, relief.mean_edge);
         double t = rkbench::now() - t0;
         rkbench::stage_progress(100, "");
         if (t < best) {
@@ -74,8 +85,9 @@ int main(int argc, char** argv) {
         }
         peak = std::max(peak, mem.grown_mib());
       }
-      std::printf("%-10d %-32s %9.3f %12.3f %10.0f %10zu\n", m.n_faces(), name, best, best / (m.n_faces() / 1e6),
-                  peak, segs);
+      const bool scored = std::string(name) != "Ridges and Valleys";
+      std::printf("%-10d %-32s %9.3f %12.3f %10.0f %10zu %s\n", m.n_faces(), name, best, best / (m.n_faces() / 1e6),
+                  peak, segs, scored ? (std::to_string(d.recall).substr(0, 5) + " / " + std::to_string(d.precision).substr(0, 5)).c_str() : "-");
     }
     std::printf("  relief-edge stages (best run):\n");
     for (const auto& kv : relief_stages)

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "mesh_bridge.h"
+#include "params.h"
 #include "reliefkit/curvature.h"
 
 namespace reliefkit::ml {
@@ -44,17 +45,12 @@ double quantity(Quantity q, double k1, double k2) {
   return 0;
 }
 
-void parameters(MeshModel& m, RichParameterList& par) {
-  double h = mean_edge_length(m);
-  double diag = m.cm.bbox.Diag() > 0 ? m.cm.bbox.Diag() : 1.0;
+void parameters(MeshModel&, RichParameterList& par) {
   par.addParam(RichEnum("estimator", 0, kEstimators, "Estimator",
                         "How curvature is measured. The jet fit is accurate also on irregular scans. The "
                         "per-face fit is a little faster and fine for curvature on regular meshes, but its "
                         "derivatives (dcurv_*) are unreliable on irregular triangulations."));
-  par.addParam(RichAbsPerc("presmoothing", float(h), 0.f, float(diag / 10), "Pre-smoothing scale",
-                           "Removes scanner noise smaller than this distance before measuring (a Gaussian "
-                           "scale, in the mesh's units). The default is the mean edge length; 0 turns it "
-                           "off; larger values keep only broader shapes."));
+  add_presmoothing(par);
   par.addParam(RichEnum("quality", 0, kQuantities, "Vertex quality",
                         "What to store in vertex quality, for Filters > Color Creation and Processing > "
                         "Colorize by vertex quality. Curvedness = sqrt((k1^2 + k2^2) / 2)."));
@@ -62,15 +58,17 @@ void parameters(MeshModel& m, RichParameterList& par) {
 
 void apply(FilterCall& call) {
   auto t0 = std::chrono::steady_clock::now();
+  const int estimator = read_enum(call, "estimator", "Estimator", kEstimators.size());
+  const Length presmoothing = read_presmoothing(call);
+  const auto q = static_cast<Quantity>(read_enum(call, "quality", "Vertex quality", kQuantities.size()));
   View view = view_of(call.mesh);
   CurvatureOptions opt;
-  opt.estimator = call.params.getEnum("estimator") == 1 ? CurvatureEstimator::FaceFit : CurvatureEstimator::Jet;
-  opt.smoothing_scale = std::max(0.f, call.params.getAbsPerc("presmoothing"));
-  opt.progress = call.progress;
+  opt.estimator = estimator == 1 ? CurvatureEstimator::FaceFit : CurvatureEstimator::Jet;
   auto t1 = std::chrono::steady_clock::now();
-  Curvature c = compute_curvature(view.mesh, opt);
+  ScaledCurvature sc = curvature_at_scale(view.mesh, presmoothing, opt.estimator, call.progress);
+  opt.smoothing_scale = sc.presmoothing;
+  const Curvature& c = sc.curvature;
   auto t2 = std::chrono::steady_clock::now();
-  const auto q = static_cast<Quantity>(call.params.getEnum("quality"));
 
   CMeshO& cm = call.mesh.cm;
   call.mesh.updateDataMask(MeshModel::MM_VERTCURVDIR | MeshModel::MM_VERTQUALITY);
@@ -101,7 +99,7 @@ void apply(FilterCall& call) {
   auto t3 = std::chrono::steady_clock::now();
   auto sec = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
   call.log(QString("Curvature and derivatives of %1 vertices / %2 faces in %3 s (copy %6 s, estimate %7 s, "
-                   "write-back %8 s; %4, pre-smoothing %5).")
+                   "write-back %8 s; %4, pre-smoothing %5 mesh units).")
                .arg(thousands(nv))
                .arg(thousands(view.mesh.n_faces()))
                .arg(sec(t0, t3), 0, 'f', 3)
@@ -110,6 +108,7 @@ void apply(FilterCall& call) {
                .arg(sec(t0, t1), 0, 'f', 3)
                .arg(sec(t1, t2), 0, 'f', 3)
                .arg(sec(t2, t3), 0, 'f', 3));
+  call.log(scale_summary(sc.scale, sc.noise, sc.presmoothing, presmoothing));
   if (!c.bad_vertices.empty() || c.degenerate_faces > 0)
     call.log(QString("%1 vertices had no usable neighbourhood (isolated or only degenerate faces): curvature 0 "
                      "there; %2 degenerate faces were skipped.")
@@ -137,7 +136,8 @@ FilterSpec curvature_tensor_filter(int id) {
   return FilterSpec{id,
                     "Compute Curvature Tensor and Derivatives",
                     kInfo,
-                    MeshFilterInterface::FilterClass(MeshFilterInterface::Normal | MeshFilterInterface::VertexColoring),
+                    // Not a colouring filter: MeshLab would switch the view to the (white) vertex colours.
+                    MeshFilterInterface::Normal,
                     MeshModel::MM_NONE,
                     MeshModel::MM_VERTCURVDIR | MeshModel::MM_VERTQUALITY,
                     parameters,

@@ -5,6 +5,7 @@
 
 #include "demarcating.h"
 #include "mesh_bridge.h"
+#include "params.h"
 
 namespace reliefkit::ml {
 namespace {
@@ -32,35 +33,30 @@ const char* kDemarcatingInfo =
 
 const char* kShadingInfo =
     "Grey-level <b>mean-curvature shading</b> for illustration: convex parts light, concave parts "
-    "dark, as in archaeological drawings (thesis section 3.6). With <i>Darken along demarcating "
-    "curves</i> the demarcating curves are drawn into the shading, so curves and shading read "
-    "together.<br><br>"
+    "dark, as in archaeological drawings (thesis section 3.6). For the curves on top, run "
+    "<i>Demarcating Curves</i> too: they come in their own layer, drawn crisply over the shading "
+    "(<i>Darken along demarcating curves</i> paints them into the colours instead).<br><br>"
     "<b>Output</b>: vertex colours (grey = 0.5 + atan(contrast &middot; H / H<sub>90</sub>) / "
     "&pi;, where H is the mean curvature and H<sub>90</sub> the 90th percentile of its magnitude on this mesh), "
     "and vertex quality = the grey level (0..1).<br><br>";
 
-void common_parameters(MeshModel& m, RichParameterList& par) {
-  double h = mean_edge_length(m);
-  double diag = m.cm.bbox.Diag() > 0 ? m.cm.bbox.Diag() : 1.0;
+void common_parameters(RichParameterList& par) {
   par.addParam(RichFloat("threshold", float(DemarcatingParams::kDefaultRelativeThreshold), "Strength threshold",
                          "Keeps curves at least this strong, relative to the automatic threshold (1). Smaller "
                          "values show fainter lines (and more noise), larger values only the boldest outlines."));
-  par.addParam(RichAbsPerc("presmoothing", float(DemarcatingParams::kDefaultPresmoothingEdges * h), 0.f,
-                           float(diag / 10), "Pre-smoothing scale",
-                           "Removes scanner noise smaller than this distance before measuring curvature (a "
-                           "Gaussian scale, in the mesh's units). Default: the mean edge length. 0 turns it off."));
+  add_presmoothing(par);
 }
 
-DemarcatingParams read_params(const RichParameterList& par, vcg::CallBackPos* cb) {
+DemarcatingParams read_params(FilterCall& call) {
   DemarcatingParams p;
-  p.relative_threshold = std::max(0.f, par.getFloat("threshold"));
-  p.presmoothing = std::max(0.f, par.getAbsPerc("presmoothing"));
-  p.progress = cb;
+  p.relative_threshold = read_float(call, "threshold", "Strength threshold", 0, 1000);
+  p.presmoothing = read_presmoothing(call);
+  p.progress = call.progress;
   return p;
 }
 
-void demarcating_parameters(MeshModel& m, RichParameterList& par) {
-  common_parameters(m, par);
+void demarcating_parameters(MeshModel&, RichParameterList& par) {
+  common_parameters(par);
   par.addParam(RichFloat("min_length", float(DemarcatingParams::kDefaultMinLengthEdges), "Minimum curve length",
                          "Drops curve pieces shorter than this many edge lengths (specks of noise). 0 keeps all."));
   par.addParam(RichBool("per_vertex", true, "Write per-vertex results",
@@ -70,66 +66,91 @@ void demarcating_parameters(MeshModel& m, RichParameterList& par) {
   par.addParam(RichBool("quality", false, "Vertex quality = curvature across",
                         "Also put the curvature in the curve-crossing direction into vertex quality (it is zero "
                         "on the curves; Colorize by vertex quality shows where the relief is convex or concave)."));
+  add_lift(par);
 }
 
-void apply_demarcating(FilterCall& call) {
-  auto t0 = std::chrono::steady_clock::now();
-  View view = view_of(call.mesh);
-  DemarcatingParams p = read_params(call.params, call.progress);
-  const double h = reliefkit::mean_edge_length(view.mesh);
-  p.min_length = std::max(0.f, call.params.getFloat("min_length")) * h;
-  DemarcatingResult r = compute_demarcating(view.mesh, p);
-
-  const QString label = derived_label(call.mesh, "demarcating curves");
-  add_curve_layer(call.doc, label, r.curves);
-  if (call.params.getBool("per_vertex")) {
-    write_vertex_attribute(call.mesh.cm, view, "demarcating_kappa", r.gradient.kappa);
-    write_vertex_attribute(call.mesh.cm, view, "demarcating_strength", r.gradient.strength);
-    write_vertex_vectors(call.mesh.cm, view, "demarcating_direction", r.gradient.direction);
-  }
-  if (call.params.getBool("quality")) {
-    call.mesh.updateDataMask(MeshModel::MM_VERTQUALITY);
-    for (size_t i = 0; i < view.vertex_of.size(); ++i) view.vertex_of[i]->Q() = float(r.gradient.kappa[i]);
-  }
-  double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  double len = r.curves.total_length();
-  call.log(QString("Demarcating curves: %1 segments in %2 curves, length %3 (%4 mean edge lengths per 1,000 faces), "
+void log_curves(FilterCall& call, const DemarcatingParams& p, const DemarcatingResult& r, const QString& label,
+                int faces, double secs) {
+  const double h = r.scale.edge, len = r.curves.total_length();
+  call.log(QString("Demarcating curves: %1 segments in %2 curves, length %3 (%4 edge lengths per 1,000 faces), "
                    "layer \"%5\"; %6 s.")
                .arg(thousands(static_cast<long long>(r.curves.segments.size())))
                .arg(thousands(static_cast<long long>(r.curves.chains().size())))
                .arg(len, 0, 'g', 5)
-               .arg(h > 0 ? 1000.0 * len / h / view.mesh.n_faces() : 0.0, 0, 'f', 1)
+               .arg(h > 0 ? 1000.0 * len / h / faces : 0.0, 0, 'f', 1)
                .arg(label)
                .arg(secs, 0, 'f', 3));
+  call.log(scale_summary(r.scale, r.noise, r.presmoothing, p.presmoothing));
   call.log(QString("Strength threshold %1 x automatic = %2 (median vertex strength %3; units 1/length^2); "
-                   "pre-smoothing %4, minimum length %5; %6 vertices resolved among three competing maxima.")
+                   "minimum length %4; %5 vertices resolved among three competing maxima.")
                .arg(p.relative_threshold, 0, 'g', 3)
                .arg(r.threshold, 0, 'g', 4)
                .arg(r.median_strength, 0, 'g', 4)
-               .arg(r.presmoothing, 0, 'g', 4)
                .arg(r.min_length, 0, 'g', 4)
                .arg(thousands(r.gradient.competing)));
+  if (r.curves.segments.empty())
+    call.log(QString("No demarcating curve is above the threshold: the layer is empty (meshlabserver then reports "
+                     "\"Failed saving\" for it). Lower \"Strength threshold\" (e.g. 0.5) or the minimum length."));
 }
 
-void shading_parameters(MeshModel& m, RichParameterList& par) {
+void apply_demarcating(FilterCall& call) {
+  auto t0 = std::chrono::steady_clock::now();
+  DemarcatingParams p = read_params(call);
+  p.min_length_edges = read_float(call, "min_length", "Minimum curve length", 0, 1e6);
+  const bool per_vertex = read_bool(call, "per_vertex", "Write per-vertex results");
+  const bool quality = read_bool(call, "quality", "Vertex quality = curvature across");
+  const double lift = read_lift(call);
+  View view = view_of(call.mesh);
+  DemarcatingResult r = compute_demarcating(view.mesh, p);
+
+  const QString label = derived_label(call.mesh, "demarcating curves");
+  add_curve_layer(call.doc, label, r.curves, vcg::Color4b(0, 0, 0, 255), &r.curvature.normal, lift * r.scale.edge);
+  if (per_vertex) {
+    write_vertex_attribute(call.mesh.cm, view, "demarcating_kappa", r.gradient.kappa);
+    write_vertex_attribute(call.mesh.cm, view, "demarcating_strength", r.gradient.strength);
+    write_vertex_vectors(call.mesh.cm, view, "demarcating_direction", r.gradient.direction);
+  }
+  if (quality) {
+    call.mesh.updateDataMask(MeshModel::MM_VERTQUALITY);
+    for (size_t i = 0; i < view.vertex_of.size(); ++i) view.vertex_of[i]->Q() = float(r.gradient.kappa[i]);
+  }
+  double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  log_curves(call, p, r, label, view.mesh.n_faces(), secs);
+}
+
+void shading_parameters(MeshModel&, RichParameterList& par) {
   par.addParam(RichFloat("contrast", 1.0f, "Contrast",
                          "How strongly curvature is turned into light and dark. At 1 the curvature of the "
                          "mesh's most curved tenth (its relief) gives three-quarter light or dark; larger "
                          "values exaggerate faint details."));
-  par.addParam(RichBool("darken", true, "Darken along demarcating curves",
-                        "Draws the demarcating curves into the shading (the vertices next to them are darkened)."));
+  par.addParam(RichBool("darken", false, "Darken along demarcating curves",
+                        "Also paints the demarcating curves into the shading (the vertices next to them are darkened). "
+                        "Off by default: on scans the painted lines are two or three triangles wide; run "
+                        "<i>Demarcating Curves</i> for crisp curves in their own layer."));
   par.addParam(RichFloat("darkness", 0.6f, "Curve darkness",
                          "How much the curves darken the shading: 0 not at all, 1 black."));
-  common_parameters(m, par);
+  common_parameters(par);
 }
 
 void apply_shading(FilterCall& call) {
+  DemarcatingParams p = read_params(call);
+  const double contrast = read_float(call, "contrast", "Contrast", 0, 1000);
+  const bool darken = read_bool(call, "darken", "Darken along demarcating curves");
+  const double darkness = read_float(call, "darkness", "Curve darkness", 0, 1);
   View view = view_of(call.mesh);
-  DemarcatingParams p = read_params(call.params, call.progress);
-  DemarcatingResult r = compute_demarcating(view.mesh, p);
-  std::vector<double> grey = mean_curvature_shading(r.curvature, call.params.getFloat("contrast"));
-  const bool darken = call.params.getBool("darken");
-  if (darken) darken_along_curves(view.mesh, r.curves, call.params.getFloat("darkness"), grey);
+  std::vector<double> grey;
+  long long segments = 0;
+  if (darken) {
+    DemarcatingResult r = compute_demarcating(view.mesh, p);
+    grey = mean_curvature_shading(r.curvature, contrast);
+    darken_along_curves(view.mesh, r.curves, darkness, grey);
+    segments = static_cast<long long>(r.curves.segments.size());
+    call.log(scale_summary(r.scale, r.noise, r.presmoothing, p.presmoothing));
+  } else {
+    ScaledCurvature sc = curvature_at_scale(view.mesh, p.presmoothing, p.estimator, p.progress);
+    grey = mean_curvature_shading(sc.curvature, contrast);
+    call.log(scale_summary(sc.scale, sc.noise, sc.presmoothing, p.presmoothing));
+  }
   call.mesh.updateDataMask(MeshModel::MM_VERTCOLOR | MeshModel::MM_VERTQUALITY);
   for (size_t i = 0; i < view.vertex_of.size(); ++i) {
     auto g = static_cast<unsigned char>(std::lround(255 * std::clamp(grey[i], 0.0, 1.0)));
@@ -138,10 +159,8 @@ void apply_shading(FilterCall& call) {
   }
   call.log(QString("Curvature shading of %1 vertices (contrast %2)%3.")
                .arg(thousands(view.mesh.n_vertices()))
-               .arg(call.params.getFloat("contrast"), 0, 'g', 3)
-               .arg(darken ? QString(", darkened along %1 demarcating-curve segments")
-                                 .arg(thousands(static_cast<long long>(r.curves.segments.size())))
-                           : QString()));
+               .arg(contrast, 0, 'g', 3)
+               .arg(darken ? QString(", darkened along %1 demarcating-curve segments").arg(thousands(segments)) : QString()));
 }
 
 }  // namespace
@@ -154,7 +173,8 @@ FilterSpec demarcating_curves_filter(int id) {
                     MeshModel::MM_NONE,
                     MeshModel::MM_VERTQUALITY,
                     demarcating_parameters,
-                    apply_demarcating};
+                    apply_demarcating,
+                    true};
 }
 
 FilterSpec curvature_shading_filter(int id) {

@@ -5,6 +5,7 @@
 
 #include "base_normals.h"
 #include "mesh_bridge.h"
+#include "params.h"
 #include "relief_edges.h"
 #include "ridges.h"
 
@@ -47,30 +48,19 @@ const char* kRidgeInfo =
     "from the curvature-derivative tensor; Y. Ohtake, A. Belyaev, H.-P. Seidel, <b>\"Ridge-valley lines on "
     "meshes via implicit surface fitting\"</b>, SIGGRAPH 2004; thesis sections 3.4 and 5.5.1.";
 
-void add_presmoothing(MeshModel& m, RichParameterList& par, double h) {
-  double diag = m.cm.bbox.Diag() > 0 ? m.cm.bbox.Diag() : 1.0;
-  par.addParam(RichAbsPerc("presmoothing", float(h), 0.f, float(diag / 10), "Pre-smoothing scale",
-                           "Removes scanner noise smaller than this distance before measuring curvature (a "
-                           "Gaussian scale, in the mesh's units). Default: the mean edge length. 0 turns it off."));
+void add_base_scale(RichParameterList& par) {
+  add_length(par, "base_scale", Length::automatic(), "Base surface scale",
+             "How far normals are averaged to find the smooth surface under the relief: about three times the width "
+             "of the relief's features (letters, figures). auto: 15 edge lengths.");
 }
 
-void add_base_scale(MeshModel& m, RichParameterList& par, double h) {
-  double diag = m.cm.bbox.Diag() > 0 ? m.cm.bbox.Diag() : 1.0;
-  par.addParam(RichAbsPerc("base_scale", float(ReliefEdgeParams::kDefaultBaseScaleEdges * h), 0.f, float(diag / 2),
-                           "Base surface scale",
-                           "How far normals are averaged to find the smooth surface under the relief: about three "
-                           "times the width of the relief's features (letters, figures). Default: 15 mean edge "
-                           "lengths."));
-}
+Length read_base_scale(FilterCall& call) { return read_length(call, "base_scale", "Base surface scale", 0.5, 10000); }
 
-void relief_parameters(MeshModel& m, RichParameterList& par) {
-  const double h = mean_edge_length(m);
-  add_presmoothing(m, par, h);
-  add_base_scale(m, par, h);
-  par.addParam(RichAbsPerc("edge_smoothing", float(ReliefEdgeParams::kDefaultEdgeSmoothing * median_edge_length(m)), 0.f,
-                           float(m.cm.bbox.Diag() > 0 ? m.cm.bbox.Diag() / 10 : 1.0), "Edge smoothing",
-                           "Smooths jagged edges (a Gaussian scale, in mesh units). Default: 0.8 of the median edge "
-                           "length (as in the thesis); 0 turns it off."));
+void relief_parameters(MeshModel&, RichParameterList& par) {
+  add_presmoothing(par);
+  add_base_scale(par);
+  add_length(par, "edge_smoothing", Length::automatic(), "Edge smoothing",
+             "Smooths jagged edges (a Gaussian scale). auto: 0.8 edge lengths (as in the thesis); 0 turns it off.");
   par.addParam(RichBool("restrict", true, "Use the base surface for directions",
                         "Limits the edge directions to those the base surface allows; helps on noisy scans."));
   par.addParam(RichFloat("strong_error", 0.5f, "Model error, strong edges",
@@ -90,38 +80,39 @@ void relief_parameters(MeshModel& m, RichParameterList& par) {
                         "relief_alpha, relief_fit_error, base_normal)."));
   par.addParam(RichBool("quality", false, "Vertex quality = curvature across the edge",
                         "Also put G (zero on the edges) into vertex quality."));
+  add_lift(par);
 }
 
 void apply_relief(FilterCall& call) {
   auto t0 = std::chrono::steady_clock::now();
-  View view = view_of(call.mesh);
-  const auto& P = call.params;
   ReliefEdgeParams p;
-  const double h = reliefkit::mean_edge_length(view.mesh);
-  p.presmoothing = std::max(0.f, P.getAbsPerc("presmoothing"));
-  p.base_scale = P.getAbsPerc("base_scale");
-  if (!(p.base_scale > 0)) throw InputError("the base surface scale must be positive");
-  p.edge_smoothing = std::max(0.f, P.getAbsPerc("edge_smoothing"));
-  p.restrict_orientation = P.getBool("restrict");
-  p.strong_error = P.getFloat("strong_error");
-  p.weak_error = std::max(P.getFloat("weak_error"), P.getFloat("strong_error"));
-  p.strong_angle = std::max(0.f, P.getFloat("strong_angle")) * kDeg;
-  p.weak_angle_h = std::max(0.f, P.getFloat("weak_angle")) * kDeg;
-  p.min_length = std::max(0.f, P.getFloat("min_length")) * h;
+  p.presmoothing = read_presmoothing(call);
+  p.base_scale = read_base_scale(call);
+  p.edge_smoothing = read_length(call, "edge_smoothing", "Edge smoothing", 0, 100);
+  p.restrict_orientation = read_bool(call, "restrict", "Use the base surface for directions");
+  p.strong_error = read_float(call, "strong_error", "Model error, strong edges", 0, 1);
+  p.weak_error = std::max(read_float(call, "weak_error", "Model error, weak edges", 0, 1), p.strong_error);
+  p.strong_angle = read_float(call, "strong_angle", "Steepness, strong edges (degrees)", 0, 90) * kDeg;
+  p.weak_angle_h = read_float(call, "weak_angle", "Steepness, weak edges (degrees)", 0, 90) * kDeg;
+  p.min_length_edges = read_float(call, "min_length", "Minimum curve length", 0, 1e6);
+  const bool per_vertex = read_bool(call, "per_vertex", "Write per-vertex results");
+  const bool quality = read_bool(call, "quality", "Vertex quality = curvature across the edge");
+  const double lift = read_lift(call);
   p.progress = call.progress;
+  View view = view_of(call.mesh);
   ReliefEdgeResult r = compute_relief_edges(view.mesh, p);
   Polylines edges = r.edges;
   for (auto& s : edges.strength) s /= kDeg;  // layer quality in degrees
   const QString label = derived_label(call.mesh, "relief edges");
-  add_curve_layer(call.doc, label, edges);
-  if (P.getBool("per_vertex")) {
+  add_curve_layer(call.doc, label, edges, vcg::Color4b(0, 0, 0, 255), &r.curvature.normal, lift * r.scale.edge);
+  if (per_vertex) {
     write_vertex_attribute(call.mesh.cm, view, "relief_G", r.G);
     write_vertex_vectors(call.mesh.cm, view, "relief_direction", r.direction);
     write_vertex_attribute(call.mesh.cm, view, "relief_alpha", r.alpha);
     write_vertex_attribute(call.mesh.cm, view, "relief_fit_error", r.fit_error);
     write_vertex_vectors(call.mesh.cm, view, "base_normal", r.base.normal);
   }
-  if (P.getBool("quality")) {
+  if (quality) {
     call.mesh.updateDataMask(MeshModel::MM_VERTQUALITY);
     for (size_t i = 0; i < view.vertex_of.size(); ++i) view.vertex_of[i]->Q() = float(r.G[i]);
   }
@@ -132,8 +123,9 @@ void apply_relief(FilterCall& call) {
                .arg(r.edges.total_length(), 0, 'g', 5)
                .arg(label)
                .arg(secs, 0, 'f', 3));
+  call.log(scale_summary(r.scale, r.noise, r.presmoothing, p.presmoothing));
   call.log(QString("Direction window %1 deg; hysteresis: strong = error <= %2 and tilt >= %3 deg, weak = error <= "
-                   "%4 and tilt >= %5 deg; base scale %6 (%7 CG iterations), edge smoothing %8.")
+                   "%4 and tilt >= %5 deg; base scale %6 (%7 CG iterations, residual %9), edge smoothing %8.")
                .arg(r.window / kDeg, 0, 'f', 1)
                .arg(p.strong_error, 0, 'g', 3)
                .arg(r.strong_angle / kDeg, 0, 'f', 1)
@@ -141,62 +133,72 @@ void apply_relief(FilterCall& call) {
                .arg(r.weak_angle / kDeg, 0, 'f', 1)
                .arg(r.base_scale, 0, 'g', 4)
                .arg(r.base.iterations)
-               .arg(r.edge_smoothing, 0, 'g', 4));
+               .arg(r.edge_smoothing, 0, 'g', 4)
+               .arg(r.base.residual, 0, 'g', 2));
+  if (r.edges.segments.empty())
+    call.log("No relief edge passed the thresholds: the layer is empty (meshlabserver then reports \"Failed saving\" "
+             "for it). Lower \"Steepness, strong edges\" (e.g. 4 degrees) or raise \"Model error, strong edges\".");
 }
 
-void base_parameters(MeshModel& m, RichParameterList& par) {
-  add_base_scale(m, par, mean_edge_length(m));
+void base_parameters(MeshModel&, RichParameterList& par) {
+  add_base_scale(par);
   par.addParam(RichBool("quality", true, "Vertex quality = tilt against the base",
                         "Put the angle (degrees) between the surface normal and the base normal into vertex quality."));
 }
 
 void apply_base(FilterCall& call) {
   auto t0 = std::chrono::steady_clock::now();
+  const Length scale = read_base_scale(call);
+  const bool quality = read_bool(call, "quality", "Vertex quality = tilt against the base");
   View view = view_of(call.mesh);
+  const MeshScale ms = mesh_scale(view.mesh);
+  scale.check("Base surface scale", 0.5, 10000, ms.edge);
   BaseNormalOptions o;
-  o.scale = call.params.getAbsPerc("base_scale");
+  o.scale = scale.resolve(ms.edge, kDefaultBaseScaleEdges * ms.edge);
   o.progress = call.progress;
-  if (!(o.scale > 0)) throw InputError("the base surface scale must be positive");
   VertexFaces vf = vertex_faces(view.mesh);
   std::vector<Vec3> n = vertex_normals(view.mesh, vf);
   BaseNormals b = estimate_base_normals(view.mesh, n, o);
   write_vertex_vectors(call.mesh.cm, view, "base_normal", b.normal);
-  if (call.params.getBool("quality")) {
+  if (quality) {
     call.mesh.updateDataMask(MeshModel::MM_VERTQUALITY);
     for (size_t i = 0; i < view.vertex_of.size(); ++i)
       view.vertex_of[i]->Q() = float(std::acos(std::clamp(n[i].dot(b.normal[i]), -1.0, 1.0)) / kDeg);
   }
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  call.log(QString("Base normals of %1 vertices at scale %2: %3 conjugate-gradient iterations (residual %4), %5 s.")
+  call.log(QString("Base normals of %1 vertices at scale %2 (%6 edge lengths): %3 conjugate-gradient iterations "
+                   "(residual %4), %5 s.")
                .arg(thousands(view.mesh.n_vertices()))
                .arg(o.scale, 0, 'g', 4)
                .arg(b.iterations)
                .arg(b.residual, 0, 'g', 2)
-               .arg(secs, 0, 'f', 3));
+               .arg(secs, 0, 'f', 3)
+               .arg(ms.edge > 0 ? o.scale / ms.edge : 0.0, 0, 'f', 1));
 }
 
-void ridge_parameters(MeshModel& m, RichParameterList& par) {
+void ridge_parameters(MeshModel&, RichParameterList& par) {
   par.addParam(RichFloat("threshold", 1.f, "Strength threshold",
                          "Keeps lines at least this curved, relative to the automatic threshold (1). Smaller values "
                          "show fainter lines, larger only the sharpest."));
-  add_presmoothing(m, par, mean_edge_length(m));
+  add_presmoothing(par);
   par.addParam(RichFloat("min_length", float(RidgeValleyParams::kDefaultMinLengthEdges), "Minimum curve length",
                          "Drops pieces shorter than this many edge lengths. 0 keeps all."));
+  add_lift(par);
 }
 
 void apply_ridges(FilterCall& call) {
   auto t0 = std::chrono::steady_clock::now();
-  View view = view_of(call.mesh);
   RidgeValleyParams p;
-  const double h = reliefkit::mean_edge_length(view.mesh);
-  p.relative_threshold = std::max(0.f, call.params.getFloat("threshold"));
-  p.presmoothing = std::max(0.f, call.params.getAbsPerc("presmoothing"));
-  p.min_length = std::max(0.f, call.params.getFloat("min_length")) * h;
+  p.relative_threshold = read_float(call, "threshold", "Strength threshold", 0, 1000);
+  p.presmoothing = read_presmoothing(call);
+  p.min_length_edges = read_float(call, "min_length", "Minimum curve length", 0, 1e6);
+  const double lift = read_lift(call);
   p.progress = call.progress;
+  View view = view_of(call.mesh);
   RidgeValleyResult r = compute_ridges_valleys(view.mesh, p);
   const QString lr = derived_label(call.mesh, "ridges"), lv = derived_label(call.mesh, "valleys");
-  add_curve_layer(call.doc, lr, r.ridges, vcg::Color4b(200, 30, 30, 255));
-  add_curve_layer(call.doc, lv, r.valleys, vcg::Color4b(30, 30, 200, 255));
+  add_curve_layer(call.doc, lr, r.ridges, vcg::Color4b(200, 30, 30, 255), &r.curvature.normal, lift * r.scale.edge);
+  add_curve_layer(call.doc, lv, r.valleys, vcg::Color4b(30, 30, 200, 255), &r.curvature.normal, lift * r.scale.edge);
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   call.log(QString("Ridges: %1 segments (threshold %2); valleys: %3 segments (threshold %4); layers \"%5\", \"%6\"; "
                    "%7 s.")
@@ -207,6 +209,7 @@ void apply_ridges(FilterCall& call) {
                .arg(lr)
                .arg(lv)
                .arg(secs, 0, 'f', 3));
+  call.log(scale_summary(r.scale, r.noise, r.presmoothing, p.presmoothing));
 }
 
 }  // namespace
@@ -214,7 +217,7 @@ void apply_ridges(FilterCall& call) {
 FilterSpec relief_edges_filter(int id) {
   return FilterSpec{id, "Relief Edges", kReliefInfo,
                     MeshFilterInterface::FilterClass(MeshFilterInterface::Normal | MeshFilterInterface::Layer),
-                    MeshModel::MM_NONE, MeshModel::MM_VERTQUALITY, relief_parameters, apply_relief};
+                    MeshModel::MM_NONE, MeshModel::MM_VERTQUALITY, relief_parameters, apply_relief, true};
 }
 
 FilterSpec base_normals_filter(int id) {
@@ -225,7 +228,7 @@ FilterSpec base_normals_filter(int id) {
 FilterSpec ridges_valleys_filter(int id) {
   return FilterSpec{id, "Ridges and Valleys", kRidgeInfo,
                     MeshFilterInterface::FilterClass(MeshFilterInterface::Normal | MeshFilterInterface::Layer),
-                    MeshModel::MM_NONE, MeshModel::MM_NONE, ridge_parameters, apply_ridges};
+                    MeshModel::MM_NONE, MeshModel::MM_NONE, ridge_parameters, apply_ridges, true};
 }
 
 }  // namespace reliefkit::ml

@@ -6,6 +6,12 @@
 namespace reliefkit::ml {
 
 View view_of(MeshModel& m) {
+  if (m.cm.fn == 0 && m.cm.en > 0)
+    throw InputError(qUtf8Printable(
+        QString("the current layer \"%1\" holds curves (%2 edges), not a surface: select the scanned mesh layer "
+                "(View > Show Layer Dialog) and run the filter again.")
+            .arg(m.label())
+            .arg(thousands(m.cm.en))));
   View v = from_vcg(m.cm);
   require_triangles(v.mesh);
   return v;
@@ -18,14 +24,22 @@ void write_vertex_attribute(CMeshO& m, const View& v, const char* name, const st
   for (long i = 0; i < n; ++i) h[v.vertex_of[i]] = Scalarm(values[i]);
 }
 
-MeshModel* add_curve_layer(MeshDocument& doc, const QString& label, const Polylines& curves, vcg::Color4b color) {
+MeshModel* add_curve_layer(MeshDocument& doc, const QString& label, const Polylines& curves, vcg::Color4b color,
+                           const std::vector<Vec3>* normals, double lift) {
   MeshModel* layer = doc.addNewMesh("", label, false);
   CMeshO& cm = layer->cm;
   layer->updateDataMask(MeshModel::MM_VERTCOLOR | MeshModel::MM_VERTQUALITY);
+  const bool lifted = normals != nullptr && lift > 0 && curves.point_edge.size() == curves.points.size();
   if (!curves.points.empty()) {
     auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(cm, curves.points.size());
     for (size_t i = 0; i < curves.points.size(); ++i, ++vi) {
-      const Vec3& p = curves.points[i];
+      Vec3 p = curves.points[i];
+      if (lifted) {
+        const auto& e = curves.point_edge[i];
+        const double w = curves.point_weight[i];
+        Vec3 n = (1 - w) * (*normals)[e[0]] + w * (*normals)[e[1]];
+        if (n.norm() > 0) p += lift * n.normalized();
+      }
       vi->P() = Point3m(Scalarm(p.x()), Scalarm(p.y()), Scalarm(p.z()));
       vi->Q() = float(curves.strength[i]);
       vi->C() = color;
@@ -53,37 +67,6 @@ void write_vertex_vectors(CMeshO& m, const View& v, const char* name, const std:
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i)
     h[v.vertex_of[i]] = Point3m(Scalarm(values[i].x()), Scalarm(values[i].y()), Scalarm(values[i].z()));
-}
-
-double mean_edge_length(MeshModel& m) {
-  double sum = 0;
-  long long n = 0;
-  for (const auto& f : m.cm.face) {
-    if (f.IsD()) continue;
-    for (int j = 0; j < 3; ++j) {
-      double l = double(vcg::Distance(f.cV(j)->cP(), f.cV((j + 1) % 3)->cP()));
-      if (std::isfinite(l)) sum += l, ++n;
-    }
-  }
-  if (n > 0 && sum > 0) return sum / n;
-  double diag = m.cm.bbox.Diag();
-  return std::isfinite(diag) && diag > 0 ? diag / 100 : 1.0;
-}
-
-double median_edge_length(MeshModel& m) {
-  std::vector<float> len;
-  len.reserve(size_t(m.cm.fn) * 3);
-  for (const auto& f : m.cm.face) {
-    if (f.IsD()) continue;
-    for (int j = 0; j < 3; ++j) {
-      float l = float(vcg::Distance(f.cV(j)->cP(), f.cV((j + 1) % 3)->cP()));
-      if (std::isfinite(l)) len.push_back(l);
-    }
-  }
-  if (len.empty()) return 0;
-  auto mid = len.begin() + len.size() / 2;
-  std::nth_element(len.begin(), mid, len.end());
-  return *mid;
 }
 
 QString thousands(long long n) {

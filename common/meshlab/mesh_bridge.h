@@ -22,24 +22,20 @@ View view_of(MeshModel& m);
 /// Vertices not in the view keep their old value.
 void write_vertex_attribute(CMeshO& m, const View& v, const char* name, const std::vector<double>& values);
 
-/// Adds a new layer holding `curves` as an edge mesh: one vertex per curve point (on the
-/// surface), one edge per segment, vertex quality = point strength, vertices coloured `color`.
+/// Adds a new layer holding `curves` as an edge mesh: one vertex per curve point, one edge per
+/// segment, vertex quality = point strength, vertices coloured `color`. With `normals` (per
+/// vertex of the surface) and `lift` > 0 (mesh units) each point is lifted off the surface along
+/// the interpolated normal, so that MeshLab draws the curves over the surface without flicker.
 /// The layer is not made current, so later filters of a script still act on the surface.
 MeshModel* add_curve_layer(MeshDocument& doc, const QString& label, const Polylines& curves,
-                           vcg::Color4b color = vcg::Color4b(0, 0, 0, 255));
+                           vcg::Color4b color = vcg::Color4b(0, 0, 0, 255), const std::vector<Vec3>* normals = nullptr,
+                           double lift = 0);
 
 /// "<mesh name> – <what>": the label of a layer derived from `m` (file extension dropped).
 QString derived_label(const MeshModel& m, const QString& what);
 
 /// Writes a named per-vertex Point3 attribute.
 void write_vertex_vectors(CMeshO& m, const View& v, const char* name, const std::vector<Vec3>& values);
-
-/// Mean edge length of the layer (for parameter defaults), or a fraction of the bounding box
-/// diagonal when the layer has no faces.
-double mean_edge_length(MeshModel& m);
-
-/// Median edge length of the layer (0 when it has no faces).
-double median_edge_length(MeshModel& m);
 
 /// "12,345" — numbers in log lines.
 QString thousands(long long n);

@@ -22,7 +22,18 @@ QString ReliefKitPlugin::filterName(FilterIDType id) const { return spec(id).nam
 QString ReliefKitPlugin::filterInfo(FilterIDType id) const { return spec(id).info; }
 MeshFilterInterface::FilterClass ReliefKitPlugin::getClass(QAction* a) { return spec(ID(a)).menu; }
 int ReliefKitPlugin::getPreConditions(QAction* a) const { return spec(ID(a)).preconditions; }
-int ReliefKitPlugin::postCondition(QAction* a) const { return spec(ID(a)).postconditions; }
+int ReliefKitPlugin::postCondition(QAction* a) const {
+  const FilterSpec& s = spec(ID(a));
+  // MeshLab's dialog offers Preview unless the filter says it changes the vertex or face count.
+  return s.adds_layers ? s.postconditions | MeshModel::MM_VERTNUMBER | MeshModel::MM_FACENUMBER : s.postconditions;
+}
+
+QString log_text(QString line) {
+  // MeshLab's log window reads its lines as rich text: "<=" and ">=" would start tags.
+  line.replace("<=", QString::fromUtf8("\u2264")).replace(">=", QString::fromUtf8("\u2265"));
+  line.replace('<', QString::fromUtf8("\u2039")).replace('>', QString::fromUtf8("\u203a"));
+  return line;
+}
 
 void ReliefKitPlugin::initParameterSet(QAction* a, MeshModel& m, RichParameterList& par) {
   const FilterSpec& s = spec(ID(a));
@@ -35,12 +46,12 @@ bool ReliefKitPlugin::applyFilter(QAction* a, MeshDocument& md, const RichParame
   auto fail = [&](const QString& msg) {
     errorMessage = msg;
     // meshlabserver does not print errorMsg(): log it as well, so batch users see why.
-    Log(GLLogStream::SYSTEM, qUtf8Printable(s.name + " failed: " + msg));
+    Log(GLLogStream::SYSTEM, qUtf8Printable(log_text(s.name + " failed: " + msg)));
     return false;
   };
   if (md.mm() == nullptr) return fail("there is no mesh layer to work on; open a mesh first.");
   try {
-    FilterCall call{md, *md.mm(), par, cb, [this](const QString& line) { Log(qUtf8Printable(line)); }};
+    FilterCall call{md, *md.mm(), par, cb, [this](const QString& line) { Log(qUtf8Printable(log_text(line))); }};
     s.apply(call);
     return true;
   } catch (const reliefkit::InputError& e) {

@@ -33,7 +33,13 @@ struct FilterSpec {
   int postconditions;  // MeshModel::MM_* the filter changes
   std::function<void(MeshModel&, RichParameterList&)> parameters;
   std::function<void(FilterCall&)> apply;
+  /// The filter adds layers (curves, a smoothed copy). MeshLab 2020.09 cannot take back the
+  /// layers a Preview adds, so such filters are not previewable.
+  bool adds_layers = false;
 };
+
+/// A log line as MeshLab's log window shows it unchanged (no character read as markup).
+QString log_text(QString line);
 
 class ReliefKitPlugin : public QObject, public MeshFilterInterface {
  public:

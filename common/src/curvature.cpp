@@ -395,14 +395,22 @@ static Curvature compute_curvature_jets(const TriMesh& mesh, const CurvatureOpti
   return out;
 }
 
-Curvature compute_curvature(const TriMesh& mesh, CurvatureEstimator estimator, double smoothing_scale,
-                            Progress progress) {
+ScaledCurvature curvature_at_scale(const TriMesh& mesh, const Length& presmoothing, CurvatureEstimator estimator,
+                                   Progress progress) {
+  require_triangles(mesh);
+  ScaledCurvature out;
+  report(progress, 0, "Scale and noise level");
+  out.scale = mesh_scale(mesh);
+  out.noise = estimate_noise(mesh, out.scale);
+  presmoothing.check("Pre-smoothing", 0, 100, out.scale.edge);
+  out.presmoothing = presmoothing.resolve(out.scale.edge, automatic_presmoothing(out.noise, out.scale));
   CurvatureOptions co;
   co.estimator = estimator;
-  co.smoothing_scale = smoothing_scale;
+  co.smoothing_scale = out.presmoothing;
   co.derivatives = true;
   co.progress = progress;
-  return compute_curvature(mesh, co);
+  out.curvature = compute_curvature(mesh, co);
+  return out;
 }
 
 Curvature compute_curvature(const TriMesh& input, const CurvatureOptions& opt) {
@@ -418,7 +426,7 @@ Curvature compute_curvature(const TriMesh& input, const CurvatureOptions& opt) {
     std::copy(input.faces.begin(), input.faces.end(), smoothed.faces.begin());
     sized(smoothed.vertices, input.vertices.size(), Vec3(Vec3::Zero()));
     std::copy(input.vertices.begin(), input.vertices.end(), smoothed.vertices.begin());
-    diffuse(input, vertex_rings(input, vf), opt.smoothing_scale, smoothed.vertices);
+    smooth_positions(input, vf, opt.smoothing_scale, smoothed.vertices);
   }
   const TriMesh& mesh = opt.smoothing_scale > 0 ? smoothed : input;
   report(opt.progress, 10, "Normals and Voronoi areas");

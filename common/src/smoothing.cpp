@@ -1,5 +1,6 @@
 #include "reliefkit/smoothing.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "reliefkit/memory.h"
@@ -8,18 +9,19 @@ namespace reliefkit {
 
 int diffusion_steps(const TriMesh& mesh, double scale) {
   if (!(scale > 0)) return 0;
-  double sum2 = 0;
-  long long n = 0;
+  // The typical squared edge length: a median, so a few huge faces (a coarse plate, debris
+  // beside the scan) do not cut the number of steps and leave the object unsmoothed.
+  std::vector<float> l2;
+  l2.reserve(mesh.faces.size() * 3);
   for (const auto& f : mesh.faces)
     for (int j = 0; j < 3; ++j) {
-      double l2 = (mesh.vertices[f[j]] - mesh.vertices[f[(j + 1) % 3]]).squaredNorm();
-      if (std::isfinite(l2)) {
-        sum2 += l2;
-        ++n;
-      }
+      double x = (mesh.vertices[f[j]] - mesh.vertices[f[(j + 1) % 3]]).squaredNorm();
+      if (std::isfinite(x) && x > 0) l2.push_back(float(x));
     }
-  if (n == 0 || !(sum2 > 0)) return 0;
-  double per_step = 0.25 * sum2 / n;  // variance added per step, per direction
+  if (l2.empty()) return 0;
+  auto mid = l2.begin() + l2.size() / 2;
+  std::nth_element(l2.begin(), mid, l2.end());
+  double per_step = 0.25 * double(*mid);  // variance added per step, per direction
   double steps = std::ceil(scale * scale / per_step);
   return steps > 10000 ? 10000 : std::max(1, int(steps));
 }
@@ -51,6 +53,64 @@ void diffuse(const TriMesh& mesh, const VertexRing& ring, double scale, std::vec
 }
 void diffuse(const TriMesh& mesh, const VertexRing& ring, double scale, std::vector<Vec3>& values) {
   diffuse_impl(mesh, ring, scale, values);
+}
+
+VertexRing boundary_rings(const TriMesh& mesh, const VertexFaces& vf) {
+  const int nv = mesh.n_vertices();
+  VertexRing r;
+  r.offset.assign(nv + 1, 0);
+  std::vector<std::vector<int>> nb(nv);
+#pragma omp parallel
+  {
+    std::vector<std::pair<int, int>> count;  // neighbour, faces shared with v
+#pragma omp for schedule(dynamic, 4096)
+    for (int v = 0; v < nv; ++v) {
+      count.clear();
+      for (int k = vf.offset[v]; k < vf.offset[v + 1]; ++k) {
+        const auto& f = mesh.faces[vf.face[k]];
+        const int c = vf.corner[k];
+        for (int u : {f[(c + 1) % 3], f[(c + 2) % 3]}) {
+          if (u == v) continue;
+          bool found = false;
+          for (auto& e : count)
+            if (e.first == u) ++e.second, found = true;
+          if (!found) count.emplace_back(u, 1);
+        }
+      }
+      for (const auto& e : count)
+        if (e.second == 1) nb[v].push_back(e.first);
+    }
+  }
+  for (int v = 0; v < nv; ++v) r.offset[v + 1] = r.offset[v] + static_cast<int>(nb[v].size());
+  r.vertex.reserve(r.offset[nv]);
+  for (int v = 0; v < nv; ++v) r.vertex.insert(r.vertex.end(), nb[v].begin(), nb[v].end());
+  return r;
+}
+
+void smooth_positions(const TriMesh& mesh, const VertexFaces& vf, double scale, std::vector<Vec3>& x) {
+  const int steps = diffusion_steps(mesh, scale);
+  if (steps == 0) return;
+  const VertexRing ring = vertex_rings(mesh, vf);
+  const VertexRing border = boundary_rings(mesh, vf);
+  const int nv = mesh.n_vertices();
+  std::vector<Vec3> y;
+  sized(y, x.size(), Vec3(Vec3::Zero()));
+  for (int s = 0; s < steps; ++s) {
+#pragma omp parallel for schedule(static)
+    for (int v = 0; v < nv; ++v) {
+      const bool on_border = border.offset[v + 1] - border.offset[v] == 2;
+      const VertexRing& use = on_border ? border : ring;
+      const int b = use.offset[v], e = use.offset[v + 1];
+      if (b == e || (border.offset[v + 1] > border.offset[v] && !on_border)) {
+        y[v] = x[v];  // isolated, or a non-manifold boundary vertex: kept in place
+        continue;
+      }
+      Vec3 sum = x[use.vertex[b]];
+      for (int k = b + 1; k < e; ++k) sum += x[use.vertex[k]];
+      y[v] = 0.5 * x[v] + (0.5 / (e - b)) * sum;
+    }
+    x.swap(y);
+  }
 }
 
 }  // namespace reliefkit

@@ -91,16 +91,39 @@ Polylines demarcating_curves(const TriMesh& mesh, const Curvature& c, const Curv
   return opt.min_length > 0 ? drop_short_chains(p, opt.min_length) : p;
 }
 
+double noise_curve_strength(const NoiseEstimate& noise, double presmoothing_edges, CurvatureEstimator estimator) {
+  if (!(noise.relative > kCleanNoise)) return 0;
+  constexpr int n = 100;
+  const TriMesh patch = noise_patch(noise.relative, n);
+  ScaledCurvature sc = curvature_at_scale(patch, Length::in_edges(presmoothing_edges), estimator, nullptr);
+  const CurvatureGradient g = curvature_gradient(sc.curvature);
+  DemarcatingOptions o;
+  const Polylines all = demarcating_curves(patch, sc.curvature, g, o);
+  const int margin = 3 + static_cast<int>(std::ceil(2 * presmoothing_edges));
+  const double unit = sc.scale.edge;  // patch edge -> strengths per edge length squared
+  return kNoiseCurveFactor * percentile(interior_segment_strengths(all, n, margin), kNoiseCurvePercentile) * unit * unit;
+}
+
+void DemarcatingParams::validate() const {
+  presmoothing.check("Pre-smoothing", 0, 100);
+  require_range(relative_threshold, "Strength threshold", 0, 1000);
+  require_range(min_length_edges, "Minimum curve length (edge lengths)", 0, 1e6);
+  require_range(max_angle, "Direction-consistency angle (radians)", 0, kPi);
+}
+
 DemarcatingResult compute_demarcating(const TriMesh& mesh, const DemarcatingParams& p) {
+  p.validate();
   require_triangles(mesh);
   DemarcatingResult r;
-  r.mean_edge = mean_edge_length(mesh);
-  r.presmoothing = length_or_default(p.presmoothing, DemarcatingParams::kDefaultPresmoothingEdges, r.mean_edge);
-  r.min_length = length_or_default(p.min_length, DemarcatingParams::kDefaultMinLengthEdges, r.mean_edge);
-  r.curvature = compute_curvature(mesh, p.estimator, r.presmoothing, p.progress);
+  ScaledCurvature sc = curvature_at_scale(mesh, p.presmoothing, p.estimator, p.progress);
+  r.scale = std::move(sc.scale);
+  r.noise = sc.noise;
+  r.presmoothing = sc.presmoothing;
+  r.curvature = std::move(sc.curvature);
+  r.min_length = p.min_length_edges * r.scale.edge;
   if (p.progress) p.progress(85, "Curvature gradient");
   r.gradient = curvature_gradient(r.curvature);
-  r.median_strength = median_strength(r.gradient);
+  r.median_strength = median_positive(counted_values(r.gradient.strength, r.scale.counts));
   if (p.progress) p.progress(92, "Demarcating curves");
   // The threshold is at least relative x the noise term, so weaker segments need not be built:
   // only their strengths are collected, for the automatic threshold's percentile.
@@ -111,6 +134,8 @@ DemarcatingResult compute_demarcating(const TriMesh& mesh, const DemarcatingPara
   o.all_strengths = &strengths;
   Polylines candidates = demarcating_curves(mesh, r.curvature, r.gradient, o);
   r.automatic_threshold = automatic_curve_threshold(r.median_strength, std::move(strengths));
+  r.noise_threshold = noise_curve_strength(r.noise, r.presmoothing / r.scale.edge, p.estimator) / (r.scale.edge * r.scale.edge);
+  r.automatic_threshold = std::max(r.automatic_threshold, r.noise_threshold);
   r.threshold = p.relative_threshold * r.automatic_threshold;
   r.curves = drop_short_chains(keep_strong_segments(candidates, r.threshold), r.min_length);
   return r;

@@ -58,33 +58,41 @@ struct DemarcatingOptions {
 Polylines demarcating_curves(const TriMesh& mesh, const Curvature& curvature, const CurvatureGradient& gradient,
                              const DemarcatingOptions& options);
 
-/// The whole method with the defaults users get from the filter. Lengths in mesh units; a
-/// negative value means "the default", derived from the mesh's mean edge length.
+/// The whole method with the defaults users get from the filter. Lengths are multiples of the
+/// scan's typical edge length (MeshScale::edge), so the same parameters suit any unit.
 /// The automatic strength threshold is reliefkit::automatic_curve_threshold() (zero_crossings.h)
-/// with the median vertex strength as noise scale.
+/// with the median vertex strength (over the vertices that count, MeshScale) as noise scale.
 struct DemarcatingParams {
   static constexpr double kDefaultRelativeThreshold = 1.0;  // x automatic threshold
-  static constexpr double kDefaultMinLengthEdges = 4.0;     // x mean edge length
-  static constexpr double kDefaultPresmoothingEdges = 1.0;  // x mean edge length
+  static constexpr double kDefaultMinLengthEdges = 4.0;     // x edge length
   CurvatureEstimator estimator = CurvatureEstimator::Jet;
-  double presmoothing = -1;
+  Length presmoothing = Length::automatic();  // automatic: from the noise level
   double relative_threshold = kDefaultRelativeThreshold;
-  double min_length = -1;
+  double min_length_edges = kDefaultMinLengthEdges;
   double max_angle = 0.78539816339744831;
   Progress progress = nullptr;
+  /// Throws InputError naming the first parameter out of its range.
+  void validate() const;
 };
 
 struct DemarcatingResult {
   Curvature curvature;
   CurvatureGradient gradient;
   Polylines curves;
-  double mean_edge = 0;          // mesh's mean edge length
+  MeshScale scale;               // edge length (the unit of lengths), parts, debris
+  NoiseEstimate noise;           // estimated noise level
   double presmoothing = 0;       // used, mesh units
-  double median_strength = 0;    // of the mesh's vertices, 1/length^2
+  double median_strength = 0;    // of the vertices that count, 1/length^2
   double automatic_threshold = 0;  // automatic_curve_threshold(median strength, all crossings)
+  double noise_threshold = 0;    // what noise alone draws (noise_curve_strength), 1/length^2
   double threshold = 0;          // absolute strength threshold used = relative x automatic
   double min_length = 0;         // used, mesh units
 };
+
+/// The strength that demarcating curves drawn by noise alone reach (kNoiseCurvePercentile of the
+/// crossings on noise_patch at the same pre-smoothing, x kNoiseCurveFactor), in units of
+/// 1/(edge length)^2; 0 on a clean mesh. The automatic threshold is at least this.
+double noise_curve_strength(const NoiseEstimate& noise, double presmoothing_edges, CurvatureEstimator estimator);
 
 /// Curvature (with pre-smoothing), curvature gradient, curves above the threshold.
 /// Throws InputError for meshes require_triangles rejects.

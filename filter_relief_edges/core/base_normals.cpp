@@ -1,5 +1,7 @@
 #include "base_normals.h"
 
+#include "reliefkit/scale.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -8,7 +10,7 @@
 
 namespace reliefkit {
 
-double default_base_scale(const TriMesh& mesh) { return 15.0 * mean_edge_length(mesh); }
+double default_base_scale(const TriMesh& mesh) { return kDefaultBaseScaleEdges * mesh_scale(mesh).edge; }
 
 BaseNormals estimate_base_normals(const TriMesh& mesh, const std::vector<Vec3>& n0, const BaseNormalOptions& opt) {
   require_triangles(mesh);

@@ -31,7 +31,9 @@ struct BaseNormals {
 BaseNormals estimate_base_normals(const TriMesh& mesh, const std::vector<Vec3>& surface_normals,
                                   const BaseNormalOptions& options);
 
-/// Default base scale: 3 x the feature scale, the feature scale being 5 mean edge lengths.
+/// Default base scale in edge lengths: 3 x the feature scale, the feature scale being 5 edge lengths.
+constexpr double kDefaultBaseScaleEdges = 15.0;
+/// kDefaultBaseScaleEdges x the typical edge length (MeshScale::edge), mesh units.
 double default_base_scale(const TriMesh& mesh);
 
 }  // namespace reliefkit

@@ -14,8 +14,6 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kA = 5 * kPi / 8, kB = kPi / 8;  // eq. 4.19
 const double kCosMaxTurn = std::cos(kPi / 4);
 
-double median_edge_length(const TriMesh& m) { return edge_length_stats(m).median; }
-
 // The edge direction maximising the correlation inside the window |theta - base| <= w
 // (eqs. 4.15-4.17): the maxima inside the window and the window's ends are the candidates.
 Vec2 restricted_direction(const CubicHarmonics& h, const Vec2* maxima, int n, const Vec2& base, double cos_w,
@@ -48,19 +46,36 @@ double edge_fit_error(const CurvatureDerivative& C, double k1, double k2, double
   return std::clamp(1 - f * f / kA / norm, 0.0, 1.0);
 }
 
+void ReliefEdgeParams::validate() const {
+  presmoothing.check("Pre-smoothing", 0, 100);
+  base_scale.check("Base surface scale", 0.5, 10000);
+  edge_smoothing.check("Edge smoothing", 0, 100);
+  require_range(min_length_edges, "Minimum curve length (edge lengths)", 0, 1e6);
+  require_range(fit_radius_edges, "Fit radius (edge lengths)", 0.5, 100);
+  require_range(strong_error, "Model error, strong edges", 0, 1);
+  require_range(weak_error, "Model error, weak edges", 0, 1);
+  require_range(strong_angle, "Steepness, strong edges", 0, kPi / 2);
+  require_range(weak_angle_h, "Steepness, weak edges", 0, kPi / 2);
+  require_range(weak_angle, "Orientation restriction angle", 0, kPi / 2);
+}
+
 ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParams& p) {
+  p.validate();
   require_triangles(mesh);
   ReliefEdgeResult r;
-  r.mean_edge = mean_edge_length(mesh);
-  const double h = r.mean_edge;
-  r.presmoothing = length_or_default(p.presmoothing, ReliefEdgeParams::kDefaultPresmoothingEdges, h);
-  r.base_scale = p.base_scale > 0 ? p.base_scale : ReliefEdgeParams::kDefaultBaseScaleEdges * h;
-  r.edge_smoothing =
-      p.edge_smoothing >= 0 ? p.edge_smoothing : ReliefEdgeParams::kDefaultEdgeSmoothing * median_edge_length(mesh);
-  r.min_length = length_or_default(p.min_length, ReliefEdgeParams::kDefaultMinLengthEdges, h);
-  const double radius = p.fit_radius > 0 ? p.fit_radius : ReliefEdgeParams::kDefaultFitRadiusEdges * h;
+  ScaledCurvature sc = curvature_at_scale(mesh, p.presmoothing, p.estimator, p.progress);
+  r.scale = std::move(sc.scale);
+  r.noise = sc.noise;
+  r.presmoothing = sc.presmoothing;
+  r.curvature = std::move(sc.curvature);
+  const double h = r.scale.edge;
+  p.base_scale.check("Base surface scale", 0.5, 10000, h);
+  p.edge_smoothing.check("Edge smoothing", 0, 100, h);
+  r.base_scale = p.base_scale.resolve(h, kDefaultBaseScaleEdges * h);
+  r.edge_smoothing = p.edge_smoothing.resolve(h, ReliefEdgeParams::kDefaultEdgeSmoothingEdges * h);
+  r.min_length = p.min_length_edges * h;
+  const double radius = p.fit_radius_edges * h;
 
-  r.curvature = compute_curvature(mesh, p.estimator, r.presmoothing, p.progress);
   const Curvature& c = r.curvature;
   const int nv = mesh.n_vertices();
 
@@ -179,7 +194,7 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
   // 10 % scanner noise on the synthetic reliefs passed as edges (precision 0.14-0.39); with it,
   // very shallow reliefs (the coin's lettering tilts by 4-10 degrees) need a lower setting.
   r.strong_angle = p.strong_angle > 0 ? p.strong_angle
-                                      : std::max(p.weak_angle, automatic_curve_threshold(median_positive(r.angle), all));
+                                      : std::max(p.weak_angle, automatic_curve_threshold(median_positive(counted_values(r.angle, r.scale.counts)), all));
   r.weak_angle = p.weak_angle_h > 0 ? p.weak_angle_h : 0.5 * r.strong_angle;
   std::vector<double> err = interpolate_at_points(all, r.fit_error);
   const size_t ns = all.segments.size();

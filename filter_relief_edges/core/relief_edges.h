@@ -32,19 +32,24 @@ CurvatureDerivative edge_correlation_form(const CurvatureDerivative& C);
 double edge_fit_error(const CurvatureDerivative& C, double k1, double k2, double f, double radius);
 
 struct ReliefEdgeParams {
-  static constexpr double kDefaultPresmoothingEdges = 1.0;   // x mean edge length
-  static constexpr double kDefaultBaseScaleEdges = 15.0;     // x mean edge length
-  static constexpr double kDefaultEdgeSmoothing = 0.8;       // x median edge length (thesis 4.4)
-  static constexpr double kDefaultMinLengthEdges = 2.0;      // x mean edge length
-  static constexpr double kDefaultFitRadiusEdges = 4.0;      // x mean edge length (see relief_edges.md)
+  static constexpr double kDefaultEdgeSmoothingEdges = 0.8;  // x edge length (thesis 4.4)
+  static constexpr double kDefaultMinLengthEdges = 2.0;      // x edge length
+  static constexpr double kDefaultFitRadiusEdges = 4.0;      // x edge length (see relief_edges.md)
   CurvatureEstimator estimator = CurvatureEstimator::Jet;
-  double presmoothing = -1, base_scale = -1, edge_smoothing = -1, min_length = -1, fit_radius = -1;
+  // Lengths, in multiples of the typical edge length (MeshScale::edge).
+  Length presmoothing = Length::automatic();    // automatic: from the noise level
+  Length base_scale = Length::automatic();      // automatic: kDefaultBaseScaleEdges
+  Length edge_smoothing = Length::automatic();  // automatic: kDefaultEdgeSmoothingEdges
+  double min_length_edges = kDefaultMinLengthEdges;
+  double fit_radius_edges = kDefaultFitRadiusEdges;
   bool restrict_orientation = true;
   double weak_angle = 11.0 * 3.14159265358979323846 / 180;  // no restriction at or below (thesis)
   // Two-dimensional hysteresis: strong points seed, weak points connected to them are kept.
   double strong_error = 0.5, weak_error = 0.8;              // normalised fit error, at most
-  double strong_angle = 0, weak_angle_h = 0;                // radians, at least; < 0 or 0: automatic
+  double strong_angle = 0, weak_angle_h = 0;                // radians, at least; 0: automatic
   Progress progress = nullptr;
+  /// Throws InputError naming the first parameter out of its range.
+  void validate() const;
 };
 
 struct ReliefEdgeResult {
@@ -57,7 +62,9 @@ struct ReliefEdgeResult {
   std::vector<double> angle;      // #V angle between surface and base normal, radians
   double window = 0;              // orientation window w, radians
   double strong_angle = 0, weak_angle = 0;  // hysteresis angles used
-  double mean_edge = 0, presmoothing = 0, base_scale = 0, edge_smoothing = 0, min_length = 0;
+  MeshScale scale;
+  NoiseEstimate noise;
+  double presmoothing = 0, base_scale = 0, edge_smoothing = 0, min_length = 0;  // used, mesh units
   Polylines edges;
 };
 

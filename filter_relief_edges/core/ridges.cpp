@@ -45,16 +45,27 @@ Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, dou
   return extract_zero_crossings(mesh, c.normal, f, o);
 }
 
+void RidgeValleyParams::validate() const {
+  presmoothing.check("Pre-smoothing", 0, 100);
+  require_range(relative_threshold, "Strength threshold", 0, 1000);
+  require_range(min_length_edges, "Minimum curve length (edge lengths)", 0, 1e6);
+}
+
 RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyParams& p) {
+  p.validate();
   require_triangles(mesh);
   RidgeValleyResult r;
-  r.mean_edge = mean_edge_length(mesh);
-  r.presmoothing = length_or_default(p.presmoothing, RidgeValleyParams::kDefaultPresmoothingEdges, r.mean_edge);
-  r.min_length = length_or_default(p.min_length, RidgeValleyParams::kDefaultMinLengthEdges, r.mean_edge);
-  r.curvature = compute_curvature(mesh, p.estimator, r.presmoothing, p.progress);
+  ScaledCurvature sc = curvature_at_scale(mesh, p.presmoothing, p.estimator, p.progress);
+  r.scale = std::move(sc.scale);
+  r.noise = sc.noise;
+  r.presmoothing = sc.presmoothing;
+  r.curvature = std::move(sc.curvature);
+  r.min_length = p.min_length_edges * r.scale.edge;
   if (p.progress) p.progress(90, "Ridges and valleys");
   std::vector<double> kmax(r.curvature.k1.size()), kmin(r.curvature.k2.size());
   for (size_t v = 0; v < kmax.size(); ++v) kmax[v] = std::abs(r.curvature.k1[v]), kmin[v] = std::abs(r.curvature.k2[v]);
+  kmax = counted_values(kmax, r.scale.counts);
+  kmin = counted_values(kmin, r.scale.counts);
   // Segments below relative x the noise term are never kept: only their strengths are collected.
   // Noise scale: the median curvature magnitude, but at least 1 % of the 99th percentile: on
   // exactly flat (synthetic) regions the median is ~0 and numerical wiggles of the derivative

@@ -16,18 +16,21 @@ namespace reliefkit {
 
 struct RidgeValleyParams {
   static constexpr double kDefaultMinLengthEdges = 4.0;
-  static constexpr double kDefaultPresmoothingEdges = 1.0;
   CurvatureEstimator estimator = CurvatureEstimator::Jet;
-  double presmoothing = -1;          // mesh units; < 0: default x mean edge length
+  Length presmoothing = Length::automatic();  // automatic: from the noise level
   double relative_threshold = 1.0;   // x automatic threshold (automatic_curve_threshold)
-  double min_length = -1;            // mesh units; < 0: default x mean edge length
+  double min_length_edges = kDefaultMinLengthEdges;
   Progress progress = nullptr;
+  /// Throws InputError naming the first parameter out of its range.
+  void validate() const;
 };
 
 struct RidgeValleyResult {
   Curvature curvature;
   Polylines ridges, valleys;
-  double mean_edge = 0, presmoothing = 0, min_length = 0;
+  MeshScale scale;
+  NoiseEstimate noise;
+  double presmoothing = 0, min_length = 0;           // used, mesh units
   double ridge_threshold = 0, valley_threshold = 0;  // absolute |k| thresholds used, 1/length
 };
 

@@ -67,6 +67,10 @@ std::string param_enum(const std::string& name, int value, int cardinality) {
   s << "/>";
   return s.str();
 }
+std::string param_string(const std::string& name, const std::string& value) {
+  return "<Param type=\"RichString\" name=\"" + name + "\" value=\"" + value + "\"/>";
+}
+
 std::string param_absperc(const std::string& name, double value) {
   std::ostringstream s;
   s << "<Param type=\"RichAbsPerc\" name=\"" << name << "\" value=\"" << value << "\" min=\"0\" max=\"1e9\"/>";

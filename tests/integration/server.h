@@ -26,6 +26,8 @@ std::string mlx_script(const std::vector<std::string>& filters);
 std::string param_enum(const std::string& name, int value, int cardinality);
 std::string param_absperc(const std::string& name, double value);
 std::string param_float(const std::string& name, double value);
+/// A length parameter as ReliefKit writes it: "auto" or a number of edge lengths.
+std::string param_string(const std::string& name, const std::string& value);
 std::string param_bool(const std::string& name, bool value);
 void write_text(const std::string& path, const std::string& text);
 

@@ -14,8 +14,8 @@ namespace {
 
 const char* kFilter = "Compute Curvature Tensor and Derivatives";
 
-std::string curvature_filter(int quality, int estimator = 0, double presmoothing = 0) {
-  return mlx_filter(kFilter, {param_enum("estimator", estimator, 2), param_absperc("presmoothing", presmoothing),
+std::string curvature_filter(int quality, int estimator = 0, const std::string& presmoothing = "auto") {
+  return mlx_filter(kFilter, {param_enum("estimator", estimator, 2), param_string("presmoothing", presmoothing),
                               param_enum("quality", quality, 6)});
 }
 

@@ -6,6 +6,7 @@
 
 #include "bad_input.h"
 #include "mesh_files.h"
+#include "reliefkit/scale.h"
 #include "reliefs.h"
 #include "server.h"
 #include "shapes.h"
@@ -14,18 +15,18 @@ using namespace rktest;
 
 namespace {
 
-std::string demarcating_filter(double threshold = 1, double presmoothing = -1, double min_length = 4,
-                               bool per_vertex = true, bool quality = false) {
+std::string demarcating_filter(double threshold = 1, const std::string& presmoothing = "auto", double min_length = 4,
+                               bool per_vertex = true, bool quality = false, double lift = 0) {
   return mlx_filter("Demarcating Curves",
-                    {param_float("threshold", threshold), param_absperc("presmoothing", presmoothing),
+                    {param_float("threshold", threshold), param_string("presmoothing", presmoothing),
                      param_float("min_length", min_length), param_bool("per_vertex", per_vertex),
-                     param_bool("quality", quality)});
+                     param_bool("quality", quality), param_float("lift", lift)});
 }
 
-std::string shading_filter(double presmoothing, bool darken = true) {
+std::string shading_filter(const std::string& presmoothing = "auto", bool darken = true) {
   return mlx_filter("Curvature Shading", {param_float("contrast", 1), param_bool("darken", darken),
                                           param_float("darkness", 0.6), param_float("threshold", 1),
-                                          param_absperc("presmoothing", presmoothing)});
+                                          param_string("presmoothing", presmoothing)});
 }
 
 }  // namespace
@@ -36,7 +37,7 @@ TEST(DemarcatingFilter, CurveLayerLiesOnTheStep) {
   Relief r = disc_on_plane(s, 120);
   std::string dir;
   ServerRun run =
-      run_filters("demarcating_plane", r.mesh, {demarcating_filter(1, r.mean_edge)}, {"-o", "curves.obj", "-l", "1"}, &dir);
+      run_filters("demarcating_plane", r.mesh, {demarcating_filter()}, {"-o", "curves.obj", "-l", "1"}, &dir);
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("in \u2013 demarcating curves"), std::string::npos) << run.output;
   MeshFile curves = read_mesh(dir + "/curves.obj");
@@ -50,7 +51,7 @@ TEST(DemarcatingFilter, ShadingIsLightOnTheShoulderDarkAtTheFoot) {
   Relief r = disc_on_plane({}, 120);
   std::string dir;
   ServerRun run =
-      run_filters("shading_plane", r.mesh, {shading_filter(r.mean_edge, false)}, {"-o", "out.ply", "-m", "vc"}, &dir);
+      run_filters("shading_plane", r.mesh, {shading_filter("auto", false)}, {"-o", "out.ply", "-m", "vc"}, &dir);
   ASSERT_EQ(run.status, 0) << run.output;
   MeshFile out = read_mesh(dir + "/out.ply");
   const auto& red = out.vertex_props["red"];
@@ -80,11 +81,13 @@ TEST(DemarcatingFilter, MainJobScriptOnTheCoin) {
   MeshFile shaded = read_mesh(dir + "/shaded.ply");
   EXPECT_GT(curves.edges.size(), 1000u);
   ASSERT_EQ(shaded.vertex_props["red"].size(), 49977u);
-  // Every curve point lies on the coin (within its bounding box).
+  // Every curve point lies on the coin (within its bounding box, up to the script's lift of 0.2
+  // edge lengths off the surface).
+  const double lift = 0.2 * reliefkit::mesh_scale(shaded.mesh).edge * 1.001;
   reliefkit::Vec3 lo = shaded.mesh.vertices[0], hi = lo;
   for (const auto& p : shaded.mesh.vertices) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   for (const auto& p : curves.mesh.vertices)
-    ASSERT_TRUE((p.array() >= lo.array() - 1e-3).all() && (p.array() <= hi.array() + 1e-3).all());
+    ASSERT_TRUE((p.array() >= lo.array() - lift).all() && (p.array() <= hi.array() + lift).all());
 }
 
 // ---- bad input, both filters ----
@@ -92,7 +95,7 @@ TEST(DemarcatingFilter, MainJobScriptOnTheCoin) {
 class DemarcatingBadInput : public ::testing::TestWithParam<int> {
  protected:
   ServerRun run(const std::string& name, const reliefkit::TriMesh& m) {
-    std::string f = GetParam() == 0 ? demarcating_filter(1, 0.05) : shading_filter(0.05);
+    std::string f = GetParam() == 0 ? demarcating_filter() : shading_filter();
     return run_filters(name + std::to_string(GetParam()), m, {f}, {"-o", "out.ply", "-m", "vc"});
   }
 };

@@ -14,20 +14,20 @@ using namespace rktest;
 
 namespace {
 
-std::string relief_filter(double h) {
+std::string relief_filter() {
   return mlx_filter("Relief Edges",
-                    {param_absperc("presmoothing", h), param_absperc("base_scale", 15 * h),
-                     param_absperc("edge_smoothing", 0.8 * h), param_bool("restrict", true),
+                    {param_string("presmoothing", "auto"), param_string("base_scale", "auto"),
+                     param_string("edge_smoothing", "auto"), param_bool("restrict", true),
                      param_float("strong_error", 0.5), param_float("weak_error", 0.8), param_float("strong_angle", 0),
                      param_float("weak_angle", 0), param_float("min_length", 2), param_bool("per_vertex", true),
-                     param_bool("quality", false)});
+                     param_bool("quality", false), param_float("lift", 0)});
 }
-std::string base_filter(double h) {
-  return mlx_filter("Estimate Base Normals", {param_absperc("base_scale", 15 * h), param_bool("quality", true)});
+std::string base_filter() {
+  return mlx_filter("Estimate Base Normals", {param_string("base_scale", "auto"), param_bool("quality", true)});
 }
-std::string ridges_filter(double h) {
-  return mlx_filter("Ridges and Valleys",
-                    {param_float("threshold", 1), param_absperc("presmoothing", h), param_float("min_length", 4)});
+std::string ridges_filter() {
+  return mlx_filter("Ridges and Valleys", {param_float("threshold", 1), param_string("presmoothing", "auto"),
+                                           param_float("min_length", 4), param_float("lift", 0)});
 }
 
 
@@ -39,7 +39,7 @@ TEST(ReliefFilters, ReliefEdgesOnANoisyCylinder) {
   Relief r = discs_on_cylinder(s);
   std::string dir;
   ServerRun run =
-      run_filters("relief_cylinder", r.mesh, {relief_filter(r.mean_edge)}, {"-o", "edges.obj", "-l", "1"}, &dir);
+      run_filters("relief_cylinder", r.mesh, {relief_filter()}, {"-o", "edges.obj", "-l", "1"}, &dir);
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("in \u2013 relief edges"), std::string::npos) << run.output;
   MeshFile edges = read_mesh(dir + "/edges.obj");
@@ -52,7 +52,7 @@ TEST(ReliefFilters, ReliefEdgesOnANoisyCylinder) {
 TEST(ReliefFilters, BaseNormalsTiltIsLargeOnTheFlanksOnly) {
   Relief r = disc_on_plane({}, 100);
   std::string dir;
-  ServerRun run = run_filters("base_plane", r.mesh, {base_filter(r.mean_edge)}, {"-o", "out.ply", "-m", "vq"}, &dir);
+  ServerRun run = run_filters("base_plane", r.mesh, {base_filter()}, {"-o", "out.ply", "-m", "vq"}, &dir);
   ASSERT_EQ(run.status, 0) << run.output;
   MeshFile out = read_mesh(dir + "/out.ply");
   const auto& q = out.vertex_props["quality"];
@@ -74,7 +74,7 @@ TEST(ReliefFilters, RidgesAndValleysLayers) {
                                       1.0, 120, 0.3, 2);
   double h = reliefkit::mean_edge_length(m);
   std::string dir;
-  ServerRun run = run_filters("ridges_groove", m, {ridges_filter(h)},
+  ServerRun run = run_filters("ridges_groove", m, {ridges_filter()},
                               {"-o", "ridges.obj", "-l", "1", "-o", "valleys.obj", "-l", "2"}, &dir);
   ASSERT_EQ(run.status, 0) << run.output;
   MeshFile valleys = read_mesh(dir + "/valleys.obj");
@@ -99,8 +99,7 @@ TEST(ReliefFilters, RidgesAndValleysLayers) {
 class ReliefBadInput : public ::testing::TestWithParam<int> {
  protected:
   ServerRun run(const std::string& name, const reliefkit::TriMesh& m) {
-    const double h = 0.05;
-    std::string f = GetParam() == 0 ? relief_filter(h) : GetParam() == 1 ? base_filter(h) : ridges_filter(h);
+    std::string f = GetParam() == 0 ? relief_filter() : GetParam() == 1 ? base_filter() : ridges_filter();
     return run_filters(name + std::to_string(GetParam()), m, {f}, {"-o", "out.ply"});
   }
 };

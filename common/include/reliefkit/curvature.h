@@ -21,6 +21,7 @@
 #pragma once
 
 #include "reliefkit/mesh.h"
+#include "reliefkit/scale.h"
 
 namespace reliefkit {
 
@@ -76,10 +77,17 @@ struct Curvature {
 /// Runs in parallel (OpenMP) over faces and vertices; no result is NaN.
 Curvature compute_curvature(const TriMesh& mesh, const CurvatureOptions& options = {});
 
-/// Curvature and derivatives with pre-smoothing at `smoothing_scale` (mesh units): the first
-/// stage of every curve filter.
-Curvature compute_curvature(const TriMesh& mesh, CurvatureEstimator estimator, double smoothing_scale,
-                            Progress progress);
+/// The first stage of every curve filter: the scan's scale and noise level, the pre-smoothing
+/// they give ("auto") or the user's multiple of the edge length, and the curvature with
+/// derivatives at that scale.
+struct ScaledCurvature {
+  MeshScale scale;
+  NoiseEstimate noise;
+  double presmoothing = 0;  // used, mesh units
+  Curvature curvature;
+};
+ScaledCurvature curvature_at_scale(const TriMesh& mesh, const Length& presmoothing, CurvatureEstimator estimator,
+                                   Progress progress);
 
 /// Unit vertex normals by Max's weights (exact for vertices on a sphere). Vertices without a
 /// usable face get (0,0,1).
