@@ -35,9 +35,7 @@ int main(int argc, char** argv) {
     // A raised and a sunken disc on a cylinder, 10 % normal noise, about `target` faces.
     rktest::ReliefShape shape;
     shape.noise = 0.1;
-    const int nz = std::max(8, int(std::sqrt(target / 2.0 / M_PI)));
-    const int nu = std::max(8, int(target / 2 / nz));
-    const rktest::Relief relief = rktest::discs_on_cylinder(shape, nu, nz);
+    const rktest::Relief relief = rktest::discs_on_cylinder_of_size(target, shape);
     const TriMesh& m = relief.mesh;
     // Each run returns its curves; they are scored against the relief's true outline, so a fast
     // failure cannot pass as a speed-up. (Ridges and valleys are not outlines: not scored.)

@@ -25,9 +25,7 @@ namespace {
 rktest::Relief cylinder_relief(long faces, double noise) {
   rktest::ReliefShape shape;
   shape.noise = noise;
-  const int nz = std::max(8, int(std::sqrt(faces / 2.0 / M_PI)));
-  const int nu = std::max(8, int(faces / 2 / nz));
-  return rktest::discs_on_cylinder(shape, nu, nz);
+  return rktest::discs_on_cylinder_of_size(faces, shape);
 }
 
 void tracking() {

@@ -115,11 +115,7 @@ DemarcatingResult compute_demarcating(const TriMesh& mesh, const DemarcatingPara
   p.validate();
   require_triangles(mesh);
   DemarcatingResult r;
-  ScaledCurvature sc = curvature_at_scale(mesh, p.presmoothing, p.estimator, p.progress);
-  r.scale = std::move(sc.scale);
-  r.noise = sc.noise;
-  r.presmoothing = sc.presmoothing;
-  r.curvature = std::move(sc.curvature);
+  static_cast<ScaledCurvature&>(r) = curvature_at_scale(mesh, p.presmoothing, p.estimator, p.progress);
   r.min_length = p.min_length_edges * r.scale.edge;
   if (p.progress) p.progress(85, "Curvature gradient");
   r.gradient = curvature_gradient(r.curvature);

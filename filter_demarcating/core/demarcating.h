@@ -75,13 +75,10 @@ struct DemarcatingParams {
   void validate() const;
 };
 
-struct DemarcatingResult {
-  Curvature curvature;
+/// The first stage's results (scale, noise, pre-smoothing used, curvature) and the curves.
+struct DemarcatingResult : ScaledCurvature {
   CurvatureGradient gradient;
   Polylines curves;
-  MeshScale scale;               // edge length (the unit of lengths), parts, debris
-  NoiseEstimate noise;           // estimated noise level
-  double presmoothing = 0;       // used, mesh units
   double median_strength = 0;    // of the vertices that count, 1/length^2
   double automatic_threshold = 0;  // automatic_curve_threshold(median strength, all crossings)
   double noise_threshold = 0;    // what noise alone draws (noise_curve_strength), 1/length^2

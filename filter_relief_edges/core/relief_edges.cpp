@@ -63,11 +63,7 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
   p.validate();
   require_triangles(mesh);
   ReliefEdgeResult r;
-  ScaledCurvature sc = curvature_at_scale(mesh, p.presmoothing, p.estimator, p.progress);
-  r.scale = std::move(sc.scale);
-  r.noise = sc.noise;
-  r.presmoothing = sc.presmoothing;
-  r.curvature = std::move(sc.curvature);
+  static_cast<ScaledCurvature&>(r) = curvature_at_scale(mesh, p.presmoothing, p.estimator, p.progress);
   const double h = r.scale.edge;
   p.base_scale.check("Base surface scale", 0.5, 10000, h);
   p.edge_smoothing.check("Edge smoothing", 0, 100, h);

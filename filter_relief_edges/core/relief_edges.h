@@ -52,8 +52,7 @@ struct ReliefEdgeParams {
   void validate() const;
 };
 
-struct ReliefEdgeResult {
-  Curvature curvature;
+struct ReliefEdgeResult : ScaledCurvature {  // scale, noise, pre-smoothing used, curvature
   BaseNormals base;
   std::vector<Vec3> direction;    // #V g: unit tangent perpendicular to the edge, pointing up the step
   std::vector<double> G;          // #V g^T II g after edge smoothing
@@ -62,9 +61,7 @@ struct ReliefEdgeResult {
   std::vector<double> angle;      // #V angle between surface and base normal, radians
   double window = 0;              // orientation window w, radians
   double strong_angle = 0, weak_angle = 0;  // hysteresis angles used
-  MeshScale scale;
-  NoiseEstimate noise;
-  double presmoothing = 0, base_scale = 0, edge_smoothing = 0, min_length = 0;  // used, mesh units
+  double base_scale = 0, edge_smoothing = 0, min_length = 0;  // used, mesh units
   Polylines edges;
 };
 

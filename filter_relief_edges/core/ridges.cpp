@@ -55,11 +55,7 @@ RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyP
   p.validate();
   require_triangles(mesh);
   RidgeValleyResult r;
-  ScaledCurvature sc = curvature_at_scale(mesh, p.presmoothing, p.estimator, p.progress);
-  r.scale = std::move(sc.scale);
-  r.noise = sc.noise;
-  r.presmoothing = sc.presmoothing;
-  r.curvature = std::move(sc.curvature);
+  static_cast<ScaledCurvature&>(r) = curvature_at_scale(mesh, p.presmoothing, p.estimator, p.progress);
   r.min_length = p.min_length_edges * r.scale.edge;
   if (p.progress) p.progress(90, "Ridges and valleys");
   std::vector<double> kmax(r.curvature.k1.size()), kmin(r.curvature.k2.size());

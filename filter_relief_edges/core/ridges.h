@@ -25,12 +25,9 @@ struct RidgeValleyParams {
   void validate() const;
 };
 
-struct RidgeValleyResult {
-  Curvature curvature;
+struct RidgeValleyResult : ScaledCurvature {  // scale, noise, pre-smoothing used, curvature
   Polylines ridges, valleys;
-  MeshScale scale;
-  NoiseEstimate noise;
-  double presmoothing = 0, min_length = 0;           // used, mesh units
+  double min_length = 0;                             // used, mesh units
   double ridge_threshold = 0, valley_threshold = 0;  // absolute |k| thresholds used, 1/length
 };
 

@@ -157,4 +157,10 @@ Detection score(const Relief& r, const reliefkit::Polylines& c, double tol) {
   return d;
 }
 
+Relief discs_on_cylinder_of_size(long faces, const ReliefShape& s) {
+  const int nz = std::max(8, int(std::sqrt(faces / 2.0 / M_PI)));
+  const int nu = std::max(8, int(faces / 2 / nz));
+  return discs_on_cylinder(s, nu, nz);
+}
+
 }  // namespace rktest

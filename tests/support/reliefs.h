@@ -32,6 +32,9 @@ Relief disc_on_sphere(const ReliefShape& s, int levels = 6);
 /// s.height on one side and a disc of radius 0.3 sunken by s.height on the other.
 Relief discs_on_cylinder(const ReliefShape& s, int nu = 400, int nz = 128);
 
+/// discs_on_cylinder with about `faces` faces (cells about square): the benchmarks' relief.
+Relief discs_on_cylinder_of_size(long faces, const ReliefShape& s);
+
 /// On the same cylinder: a raised square (side 1.2) and a sunken square (side 0.9) with sharp
 /// corners (superellipses of exponent 8), in the unrolled (arc length, z) coordinates.
 Relief squares_on_cylinder(const ReliefShape& s);
