@@ -69,12 +69,15 @@ void relief_parameters(MeshModel&, RichParameterList& par) {
                          "Edges continue from the seeds where the fit is at least this good."));
   par.addParam(RichFloat("strong_angle", 0.f, "Steepness, strong edges (degrees)",
                          "Edges seed where the surface is tilted at least this much against the base surface. 0: "
-                         "automatic (above the tilt scanner noise gives, at least 11 degrees). Shallow reliefs such "
-                         "as worn coins need 4-6 degrees."));
+                         "automatic (above the tilt the scan's measured noise gives and above most crossings' tilt; "
+                         "the log says which)."));
   par.addParam(RichFloat("weak_angle", 0.f, "Steepness, weak edges (degrees)",
                          "Edges continue from the seeds where the tilt is at least this. 0: half the strong one."));
   par.addParam(RichFloat("min_length", float(ReliefEdgeParams::kDefaultMinLengthEdges), "Minimum curve length",
                          "Drops edge pieces shorter than this many edge lengths. 0 keeps all."));
+  par.addParam(RichFloat("gap", float(ReliefEdgeParams::kDefaultLinkGapEdges), "Bridge gaps up to",
+                         "Joins the ends of edge pieces that face each other across a gap of at most this many edge "
+                         "lengths, so that outlines come out continuous. 0 leaves the pieces as found."));
   par.addParam(RichBool("per_vertex", true, "Write per-vertex results",
                         "Also store the per-vertex quantities on this mesh (relief_G, relief_direction, "
                         "relief_alpha, relief_fit_error, base_normal)."));
@@ -95,6 +98,7 @@ void apply_relief(FilterCall& call) {
   p.strong_angle = read_float(call, "strong_angle", "Steepness, strong edges (degrees)", 0, 90) * kDeg;
   p.weak_angle_h = read_float(call, "weak_angle", "Steepness, weak edges (degrees)", 0, 90) * kDeg;
   p.min_length_edges = read_float(call, "min_length", "Minimum curve length", 0, 1e6);
+  p.link_gap_edges = read_float(call, "gap", "Bridge gaps up to", 0, 20);
   const bool per_vertex = read_bool(call, "per_vertex", "Write per-vertex results");
   const bool quality = read_bool(call, "quality", "Vertex quality = curvature across the edge");
   const double lift = read_lift(call);
@@ -117,15 +121,17 @@ void apply_relief(FilterCall& call) {
     for (size_t i = 0; i < view.vertex_of.size(); ++i) view.vertex_of[i]->Q() = float(r.G[i]);
   }
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  call.log(QString("Relief edges: %1 segments in %2 curves, length %3, layer \"%4\"; %5 s.")
+  call.log(QString("Relief edges: %1 segments in %2 curves (%6 gaps bridged), length %3, layer \"%4\"; %5 s.")
                .arg(thousands(static_cast<long long>(r.edges.segments.size())))
                .arg(thousands(static_cast<long long>(r.edges.chains().size())))
                .arg(r.edges.total_length(), 0, 'g', 5)
                .arg(label)
-               .arg(secs, 0, 'f', 3));
+               .arg(secs, 0, 'f', 3)
+               .arg(r.links));
   call.log(scale_summary(r.scale, r.noise, r.presmoothing, p.presmoothing));
   call.log(QString("Direction window %1 deg; hysteresis: strong = error <= %2 and tilt >= %3 deg, weak = error <= "
-                   "%4 and tilt >= %5 deg; base scale %6 (%7 CG iterations, residual %9), edge smoothing %8.")
+                   "%4 and tilt >= %5 deg (automatic: %10 deg from the crossings, %11 deg from the noise); base scale "
+                   "%6 (%7 CG iterations, residual %9), edge smoothing %8.")
                .arg(r.window / kDeg, 0, 'f', 1)
                .arg(p.strong_error, 0, 'g', 3)
                .arg(r.strong_angle / kDeg, 0, 'f', 1)
@@ -134,7 +140,9 @@ void apply_relief(FilterCall& call) {
                .arg(r.base_scale, 0, 'g', 4)
                .arg(r.base.iterations)
                .arg(r.edge_smoothing, 0, 'g', 4)
-               .arg(r.base.residual, 0, 'g', 2));
+               .arg(r.base.residual, 0, 'g', 2)
+               .arg(r.automatic_angle / kDeg, 0, 'f', 1)
+               .arg(r.noise_angle / kDeg, 0, 'f', 1));
   if (r.edges.segments.empty())
     call.log("No relief edge passed the thresholds: the layer is empty (meshlabserver then reports \"Failed saving\" "
              "for it). Lower \"Steepness, strong edges\" (e.g. 4 degrees) or raise \"Model error, strong edges\".");

@@ -96,7 +96,7 @@ QString scale_summary(const MeshScale& scale, const NoiseEstimate& noise, double
   QString parts = scale.parts > 1 ? QString(", %1 connected parts").arg(scale.parts) : QString();
   if (scale.debris_faces > 0)
     parts += QString(" (%1 faces of small parts left out of the statistics)").arg(scale.debris_faces);
-  return QString("Edge length %1 (median of the largest part%2); noise %3 = %4 %% of the edge length; pre-smoothing "
+  return QString("Edge length %1 (median of the largest part%2); noise %3 = %4 % of the edge length; pre-smoothing "
                  "%5 = %6 edge lengths (%7).")
       .arg(scale.edge, 0, 'g', 4)
       .arg(parts)

@@ -1,5 +1,7 @@
 #include "reliefkit/zero_crossings.h"
 
+#include <tuple>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -338,6 +340,89 @@ Polylines drop_short_chains(const Polylines& in, double min_length) {
   for (size_t k = 0; k < in.segments.size(); ++k)
     keep[k] = keep_point[in.segments[k][0]] && keep_point[in.segments[k][1]];
   return select_segments(in, keep);
+}
+
+int link_gaps(Polylines& c, double max_gap, double max_turn) {
+  if (!(max_gap > 0) || c.segments.empty()) return 0;
+  const int np = static_cast<int>(c.points.size());
+  std::vector<int> deg(np, 0), seg_of(np, -1);
+  for (int k = 0; k < static_cast<int>(c.segments.size()); ++k)
+    for (int e : c.segments[k]) ++deg[e], seg_of[e] = k;
+  // Ends of open chains: their chain, its length, and the outward direction near the end.
+  struct End {
+    int point, chain;
+    Vec3 out;
+  };
+  std::vector<End> ends;
+  std::vector<double> chain_length;
+  const auto chains = c.chains();
+  for (int ci = 0; ci < static_cast<int>(chains.size()); ++ci) {
+    const auto& ch = chains[ci];
+    double L = 0;
+    for (size_t i = 1; i < ch.size(); ++i) L += (c.points[ch[i]] - c.points[ch[i - 1]]).norm();
+    chain_length.push_back(L);
+    if (ch.size() < 2 || ch.front() == ch.back()) continue;
+    for (int side = 0; side < 2; ++side) {
+      const int n = static_cast<int>(ch.size());
+      const int p = side == 0 ? ch.front() : ch.back();
+      if (deg[p] != 1) continue;
+      // Walk back along the chain up to max_gap for a stable direction.
+      Vec3 tip = c.points[p], back = tip;
+      double walked = 0;
+      for (int i = 1; i < n && walked < max_gap; ++i) {
+        const Vec3& q = c.points[side == 0 ? ch[i] : ch[n - 1 - i]];
+        walked += (q - back).norm();
+        back = q;
+      }
+      Vec3 out = tip - back;
+      if (out.norm() > 0) ends.push_back({p, ci, out.normalized()});
+    }
+  }
+  if (ends.size() < 2) return 0;
+  // Candidate pairs through a grid of cell max_gap.
+  auto cell = [max_gap](const Vec3& x) {
+    return std::array<long long, 3>{static_cast<long long>(std::floor(x.x() / max_gap)),
+                                    static_cast<long long>(std::floor(x.y() / max_gap)),
+                                    static_cast<long long>(std::floor(x.z() / max_gap))};
+  };
+  std::vector<std::pair<std::array<long long, 3>, int>> grid;
+  for (int i = 0; i < static_cast<int>(ends.size()); ++i) grid.push_back({cell(c.points[ends[i].point]), i});
+  std::sort(grid.begin(), grid.end());
+  const double cos_turn = std::cos(max_turn);
+  std::vector<std::tuple<double, int, int>> pairs;
+  for (int i = 0; i < static_cast<int>(ends.size()); ++i) {
+    const Vec3& pi = c.points[ends[i].point];
+    const auto ci = cell(pi);
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          const std::array<long long, 3> key{ci[0] + dx, ci[1] + dy, ci[2] + dz};
+          auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(key, -1));
+          for (; it != grid.end() && it->first == key; ++it) {
+            const int j = it->second;
+            if (j <= i) continue;
+            const Vec3 d = c.points[ends[j].point] - pi;
+            const double dist = d.norm();
+            if (!(dist <= max_gap)) continue;
+            if (ends[i].chain == ends[j].chain && chain_length[ends[i].chain] <= 4 * max_gap) continue;
+            if (dist > 0 && (ends[i].out.dot(d) < cos_turn * dist || ends[j].out.dot(-d) < cos_turn * dist)) continue;
+            if (ends[i].out.dot(-ends[j].out) < cos_turn) continue;  // the two ends must face each other
+            pairs.emplace_back(dist, i, j);
+          }
+        }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<char> used(ends.size(), 0);
+  int links = 0;
+  for (const auto& [dist, i, j] : pairs) {
+    if (used[i] || used[j]) continue;
+    used[i] = used[j] = 1;
+    const int a = ends[i].point, b = ends[j].point;
+    c.segments.push_back({a, b});
+    c.segment_face.push_back(c.segment_face[seg_of[a]]);
+    ++links;
+  }
+  return links;
 }
 
 }  // namespace reliefkit

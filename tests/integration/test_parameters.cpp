@@ -169,7 +169,7 @@ TEST(PortableParameters, BadValuesStopWithAClearMessage) {
        {param_string("presmoothing", "auto"), param_string("base_scale", "1e30"), param_string("edge_smoothing", "auto"),
         param_bool("restrict", true), param_float("strong_error", 0.5), param_float("weak_error", 0.8),
         param_float("strong_angle", 0), param_float("weak_angle", 0), param_float("min_length", 2),
-        param_bool("per_vertex", true), param_bool("quality", false), param_float("lift", 0)},
+        param_float("gap", 3), param_bool("per_vertex", true), param_bool("quality", false), param_float("lift", 0)},
        "Base surface scale (\"base_scale\") must be \"auto\" or a number of edge lengths between 0.5 and 10000"},
   };
   int k = 0;

@@ -19,7 +19,7 @@ std::string relief_filter() {
                     {param_string("presmoothing", "auto"), param_string("base_scale", "auto"),
                      param_string("edge_smoothing", "auto"), param_bool("restrict", true),
                      param_float("strong_error", 0.5), param_float("weak_error", 0.8), param_float("strong_angle", 0),
-                     param_float("weak_angle", 0), param_float("min_length", 2), param_bool("per_vertex", true),
+                     param_float("weak_angle", 0), param_float("min_length", 2), param_float("gap", 3), param_bool("per_vertex", true),
                      param_bool("quality", false), param_float("lift", 0)});
 }
 std::string base_filter() {

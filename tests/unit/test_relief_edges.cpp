@@ -103,6 +103,8 @@ TEST(ReliefEdgesReliefs, NoisyBeatDemarcatingCurves) {
       rktest::Relief r = c.make(s);
       // The thesis compares the two at equal pre-smoothing (one edge length); at defaults both
       // smooth as much as the noise asks and both are near perfect (DefaultsOnNoisyReliefs).
+      // At one edge length the demarcating curves' strengths are below what the noise alone
+      // draws, so their automatic threshold drops them; relief edges still find the reliefs.
       ReliefEdgeParams rp;
       rp.presmoothing = Length::in_edges(1.0);
       DemarcatingParams dp;

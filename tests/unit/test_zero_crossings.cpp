@@ -111,3 +111,36 @@ TEST(ZeroCrossings, SizeMismatchIsAnError) {
   fld.value_along = [](int, const Vec3&) { return 0.0; };
   EXPECT_THROW(extract_zero_crossings(m, up(m), fld), InputError);
 }
+
+TEST(LinkGaps, JoinsEndsThatFaceEachOtherOnly) {
+  // Two collinear pieces with a gap of 2 (joined), a third piece turning away at a right angle
+  // beyond the gap's end (not joined: its end does not face the others), and a short piece whose
+  // own two ends are close (not closed onto itself).
+  Polylines c;
+  auto piece = [&c](std::vector<Vec3> pts) {
+    const int base = static_cast<int>(c.points.size());
+    for (const auto& p : pts) {
+      c.points.push_back(p);
+      c.strength.push_back(1);
+    }
+    for (size_t i = 1; i < pts.size(); ++i) {
+      c.segments.push_back({base + int(i) - 1, base + int(i)});
+      c.segment_face.push_back(0);
+    }
+  };
+  piece({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}});
+  piece({{5, 0, 0}, {6, 0, 0}, {7, 0, 0}, {8, 0, 0}});
+  piece({{10, 1, 0}, {10, 2, 0}, {10, 3, 0}});
+  piece({{0, 5, 0}, {0.5, 5.5, 0}, {0, 6, 0}});
+  const size_t before = c.segments.size();
+  EXPECT_EQ(link_gaps(c, 2.5, 0.785), 1);
+  ASSERT_EQ(c.segments.size(), before + 1);
+  EXPECT_EQ(c.points[c.segments.back()[0]].x() + c.points[c.segments.back()[1]].x(), 8.0);  // 3 -> 5
+  EXPECT_EQ(c.chains().size(), 3u);
+  // Gaps wider than max_gap stay open.
+  Polylines d;
+  std::swap(c, d);
+  piece({{0, 0, 0}, {1, 0, 0}});
+  piece({{4, 0, 0}, {5, 0, 0}});
+  EXPECT_EQ(link_gaps(c, 2.5, 0.785), 0);
+}

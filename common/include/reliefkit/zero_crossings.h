@@ -109,6 +109,14 @@ Polylines select_segments(const Polylines& curves, const std::vector<char>& keep
 /// Keeps the segments whose strength (mean of their end points') reaches `min_strength`.
 Polylines keep_strong_segments(const Polylines& curves, double min_strength);
 
+/// Joins curve ends across small gaps: an end of a chain (a point with one segment) is linked by
+/// a new segment to the nearest other end within `max_gap` (mesh units) when the link continues
+/// both ends' directions within `max_turn` radians (each end's direction taken over its last
+/// `max_gap` of curve); pairs are taken nearest first, each end at most once. A chain is not
+/// closed onto itself unless it is longer than 4 x max_gap. The new segments take the strength
+/// of their ends and the face of the first end's segment. Returns how many links were made.
+int link_gaps(Polylines& curves, double max_gap, double max_turn);
+
 /// Keeps only the chains at least `min_length` long (removes isolated short fragments).
 Polylines drop_short_chains(const Polylines& curves, double min_length);
 
