@@ -2,6 +2,7 @@
 //   rk_make_mesh torus R r nu nv jitter seed out.ply
 //   rk_make_mesh relief-torus FACES out.ply      (jittered torus with bumps, ~FACES faces)
 //   rk_make_mesh sphere r levels jitter out.ply
+//   rk_make_mesh convert in.obj|in.ply out.ply   (e.g. OBJ files MeshLab 2020.09's importer aborts on)
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -13,7 +14,9 @@
 int main(int argc, char** argv) {
   std::string kind = argc > 1 ? argv[1] : "";
   try {
-    if (kind == "torus" && argc == 9) {
+    if (kind == "convert" && argc == 4) {
+      rktest::write_ply(argv[3], rktest::read_mesh(argv[2]).mesh);
+    } else if (kind == "torus" && argc == 9) {
       auto m = rktest::torus(std::atof(argv[2]), std::atof(argv[3]), std::atoi(argv[4]), std::atoi(argv[5]),
                              std::atof(argv[6]), std::atoi(argv[7]));
       rktest::write_ply(argv[8], m);
