@@ -62,7 +62,7 @@ void tracking() {
 void sweep(const std::vector<long>& sizes) {
   std::printf("Demarcating curves on the cylinder relief, 10 %% noise, %d threads\n", omp_get_max_threads());
   std::printf("%-9s %-10s %8s %8s %9s %8s\n", "faces", "presmooth", "edges", "recall", "precision", "time s");
-  const double fixed[] = {-1, 0.5, 1, 1.5, 2, 3, 4, 6};
+  const double fixed[] = {-1, 0.5, 1, 1.5, 2, 3, 4, 6, 8};
   for (long target : sizes) {
     rktest::Relief r = cylinder_relief(target, 0.1);
     MeshScale sc = mesh_scale(r.mesh);

@@ -51,7 +51,8 @@ const char* kRidgeInfo =
 void add_base_scale(RichParameterList& par) {
   add_length(par, "base_scale", Length::automatic(), "Base surface scale",
              "How far normals are averaged to find the smooth surface under the relief: about three times the width "
-             "of the relief's features (letters, figures). auto: 15 edge lengths.");
+             "of the relief's features (letters, figures). auto: 15 edge lengths, or a fifteenth of the "
+             "object's size if that is more.");
 }
 
 Length read_base_scale(FilterCall& call) { return read_length(call, "base_scale", "Base surface scale", 0.5, 10000); }
@@ -162,7 +163,7 @@ void apply_base(FilterCall& call) {
   const MeshScale ms = mesh_scale(view.mesh);
   scale.check("Base surface scale", 0.5, 10000, ms.edge);
   BaseNormalOptions o;
-  o.scale = scale.resolve(ms.edge, kDefaultBaseScaleEdges * ms.edge);
+  o.scale = scale.resolve(ms.edge, automatic_base_scale(ms));
   o.progress = call.progress;
   VertexFaces vf = vertex_faces(view.mesh);
   std::vector<Vec3> n = vertex_normals(view.mesh, vf);

@@ -395,6 +395,22 @@ static Curvature compute_curvature_jets(const TriMesh& mesh, const CurvatureOpti
   return out;
 }
 
+double feature_width(const TriMesh& mesh, const Curvature& c, const MeshScale& scale) {
+  if (c.dcurv.size() != c.k1.size() || c.k1.empty()) return 0;
+  const VertexFaces vf = vertex_faces(mesh);
+  const VertexRing border = boundary_rings(mesh, vf);
+  std::vector<double> k, d;
+  for (size_t v = 0; v < c.k1.size(); ++v) {
+    if (border.offset[v + 1] > border.offset[v]) continue;
+    if (!scale.counts.empty() && !scale.counts[v]) continue;
+    const CurvatureDerivative& C = c.dcurv[v];
+    k.push_back(std::max(std::abs(c.k1[v]), std::abs(c.k2[v])));
+    d.push_back(std::sqrt(C.a * C.a + 3 * C.b * C.b + 3 * C.c * C.c + C.d * C.d));
+  }
+  const double kq = percentile(k, 0.99), dq = percentile(d, 0.99);
+  return dq > 0 && std::isfinite(kq / dq) ? kq / dq : 0;
+}
+
 ScaledCurvature curvature_at_scale(const TriMesh& mesh, const Length& presmoothing, CurvatureEstimator estimator,
                                    Progress progress) {
   require_triangles(mesh);

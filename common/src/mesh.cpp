@@ -31,21 +31,6 @@ EdgeStats edge_length_stats(const TriMesh& mesh) {
   return s;
 }
 
-double mean_edge_length(const TriMesh& mesh) {
-  double sum = 0;
-  long long n = 0;
-  const int nf = mesh.n_faces();
-#pragma omp parallel for schedule(static) reduction(+ : sum, n)
-  for (int i = 0; i < nf; ++i) {
-    const auto& f = mesh.faces[i];
-    for (int j = 0; j < 3; ++j) {
-      double l = (mesh.vertices[f[j]] - mesh.vertices[f[(j + 1) % 3]]).norm();
-      if (std::isfinite(l)) sum += l, ++n;
-    }
-  }
-  return n > 0 ? sum / double(n) : 0.0;
-}
-
 void require_triangles(const TriMesh& mesh) {
   std::ostringstream msg;
   if (mesh.faces.empty()) {

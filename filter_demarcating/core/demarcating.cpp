@@ -71,7 +71,6 @@ CurvatureGradient curvature_gradient(const Curvature& c) {
   return g;
 }
 
-double median_strength(const CurvatureGradient& g) { return median_positive(g.strength); }
 
 Polylines demarcating_curves(const TriMesh& mesh, const Curvature& c, const CurvatureGradient& g,
                              const DemarcatingOptions& opt) {

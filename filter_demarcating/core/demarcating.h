@@ -41,10 +41,6 @@ Vec2 curvature_gradient_direction(const CurvatureDerivative& C, double sigma = k
 /// g_p, k(g_p) and strength at every vertex (in parallel).
 CurvatureGradient curvature_gradient(const Curvature& curvature);
 
-/// Median strength over the vertices: the scale of the mesh's own strength distribution.
-/// Strength thresholds relative to it are scale-free (the same relative threshold suits a coin
-/// in millimetres and a statue in metres, since both scale as 1/length^2).
-double median_strength(const CurvatureGradient& g);
 
 struct DemarcatingOptions {
   double min_strength = 0;              // absolute strength threshold (1/length^2)

@@ -10,7 +10,11 @@
 
 namespace reliefkit {
 
-double default_base_scale(const TriMesh& mesh) { return kDefaultBaseScaleEdges * mesh_scale(mesh).edge; }
+double automatic_base_scale(const MeshScale& s) {
+  return kDefaultBaseScaleEdges * s.edge;
+}
+
+double default_base_scale(const TriMesh& mesh) { return automatic_base_scale(mesh_scale(mesh)); }
 
 BaseNormals estimate_base_normals(const TriMesh& mesh, const std::vector<Vec3>& n0, const BaseNormalOptions& opt) {
   require_triangles(mesh);

@@ -11,6 +11,7 @@
 #pragma once
 
 #include "reliefkit/mesh.h"
+#include "reliefkit/scale.h"
 
 namespace reliefkit {
 
@@ -31,9 +32,11 @@ struct BaseNormals {
 BaseNormals estimate_base_normals(const TriMesh& mesh, const std::vector<Vec3>& surface_normals,
                                   const BaseNormalOptions& options);
 
-/// Default base scale in edge lengths: 3 x the feature scale, the feature scale being 5 edge lengths.
+/// The base scale without curvature at hand (mesh units): kDefaultBaseScaleEdges edge lengths.
+/// Relief Edges also takes it at least kBaseScaleWidths x the features' own width.
 constexpr double kDefaultBaseScaleEdges = 15.0;
-/// kDefaultBaseScaleEdges x the typical edge length (MeshScale::edge), mesh units.
+double automatic_base_scale(const MeshScale& scale);
+/// automatic_base_scale of the mesh.
 double default_base_scale(const TriMesh& mesh);
 
 }  // namespace reliefkit

@@ -83,10 +83,12 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
   const double h = r.scale.edge;
   p.base_scale.check("Base surface scale", 0.5, 10000, h);
   p.edge_smoothing.check("Edge smoothing", 0, 100, h);
-  r.base_scale = p.base_scale.resolve(h, kDefaultBaseScaleEdges * h);
+  r.feature_width = feature_width(mesh, r.curvature, r.scale);
+  r.base_scale = p.base_scale.resolve(h, std::max(automatic_base_scale(r.scale), kBaseScaleWidths * r.feature_width));
   r.edge_smoothing = p.edge_smoothing.resolve(h, ReliefEdgeParams::kDefaultEdgeSmoothingEdges * h);
   r.min_length = p.min_length_edges * h;
-  const double radius = p.fit_radius_edges * h;
+  r.fit_radius = std::max(p.fit_radius_edges * h, kFitRadiusWidths * r.feature_width);
+  const double radius = r.fit_radius;
 
   const Curvature& c = r.curvature;
   const int nv = mesh.n_vertices();
@@ -129,7 +131,7 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
   double sum2 = 0;
   long cnt = 0;
   for (int v = 0; v < nv; ++v)
-    if (strong_base[v]) {
+    if (strong_base[v] && (r.scale.counts.empty() || r.scale.counts[v])) {  // debris does not count
       double d = std::acos(std::clamp(best[v].dot(base[v]), -1.0, 1.0));
       sum2 += d * d;
       ++cnt;
@@ -205,8 +207,18 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
   // gives after the same pre-smoothing (noise_tilt). The thesis' fixed 11 degrees (used before)
   // kept 10 % noise out at one edge length of smoothing but lost the coin's lettering, which
   // tilts by 4-10 degrees; the weak threshold is half the strong one.
-  r.automatic_angle = automatic_curve_threshold(median_positive(counted_values(r.angle, r.scale.counts)), all);
+  // The crossings' percentile is taken over those above the noise's tilt: on a finely meshed
+  // noisy scan the noise's crossings outnumber the relief's and pulled the percentile (and with
+  // it the threshold, to 1.2 degrees at 1 M faces) down to where the feet and tops of the steps
+  // passed as edges.
   r.noise_angle = noise_tilt(r.noise, r.presmoothing / h);
+  std::vector<double> above_noise;
+  for (const auto& sg : all.segments) {
+    const double a = 0.5 * (all.strength[sg[0]] + all.strength[sg[1]]);
+    if (a > r.noise_angle) above_noise.push_back(a);
+  }
+  r.automatic_angle =
+      automatic_curve_threshold(median_positive(counted_values(r.angle, r.scale.counts)), std::move(above_noise));
   r.strong_angle = p.strong_angle > 0 ? p.strong_angle : std::max(r.automatic_angle, r.noise_angle);
   r.weak_angle = p.weak_angle_h > 0 ? p.weak_angle_h : 0.5 * r.strong_angle;
   std::vector<double> err = interpolate_at_points(all, r.fit_error);

@@ -43,7 +43,7 @@ struct ReliefEdgeParams {
   Length edge_smoothing = Length::automatic();  // automatic: kDefaultEdgeSmoothingEdges
   double min_length_edges = kDefaultMinLengthEdges;
   double link_gap_edges = kDefaultLinkGapEdges;  // join curve ends facing each other across gaps up to this
-  double fit_radius_edges = kDefaultFitRadiusEdges;
+  double fit_radius_edges = kDefaultFitRadiusEdges;  // at least; see kFitRadiusWidths
   bool restrict_orientation = true;
   double weak_angle = 11.0 * 3.14159265358979323846 / 180;  // no restriction at or below (thesis)
   // Two-dimensional hysteresis: strong points seed, weak points connected to them are kept.
@@ -66,7 +66,8 @@ struct ReliefEdgeResult : ScaledCurvature {  // scale, noise, pre-smoothing used
   double strong_angle = 0, weak_angle = 0;  // hysteresis angles used
   double automatic_angle = 0;     // automatic_curve_threshold of the crossing tilts
   double noise_angle = 0;         // noise_tilt: what the estimated noise alone tilts the surface by
-  double base_scale = 0, edge_smoothing = 0, min_length = 0;  // used, mesh units
+  double base_scale = 0, edge_smoothing = 0, min_length = 0, fit_radius = 0;  // used, mesh units
+  double feature_width = 0;       // feature_width() of the pre-smoothed surface, mesh units
   Polylines edges;
 };
 
@@ -79,6 +80,15 @@ constexpr double kNoiseTiltFactor = 2.0;
 /// The tilt (radians) that noise of the estimated level leaves after the same pre-smoothing:
 /// kNoiseCurvePercentile of the normals' tilt on noise_patch, x kNoiseTiltFactor.
 double noise_tilt(const NoiseEstimate& noise, double presmoothing_edges);
+
+/// The fit-error radius and the automatic base scale follow the features' own width (feature_width)
+/// where it spans more than a few triangles: radius at least kFitRadiusWidths x the width, base
+/// scale at least kBaseScaleWidths x the width (the thesis: three times the feature scale). With
+/// fixed edge-length multiples alone, the same relief meshed at 4 M faces (16 edge lengths wide
+/// instead of 2.5) lost every edge: the step no longer fitted within 4 edge lengths, and the base
+/// followed the relief.
+constexpr double kFitRadiusWidths = 2.4;
+constexpr double kBaseScaleWidths = 9.0;
 
 /// Largest turn (radians) a gap-bridging link may make against the directions of the two ends.
 constexpr double kLinkTurn = 0.78539816339744831;

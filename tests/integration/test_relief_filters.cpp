@@ -72,7 +72,7 @@ TEST(ReliefFilters, RidgesAndValleysLayers) {
   // A groove along y at x = 0: one valley line there.
   reliefkit::TriMesh m = height_field([](double x, double) { return -0.05 * std::exp(-x * x / (2 * 0.05 * 0.05)); },
                                       1.0, 120, 0.3, 2);
-  double h = reliefkit::mean_edge_length(m);
+  double h = reliefkit::edge_length_stats(m).mean;
   std::string dir;
   ServerRun run = run_filters("ridges_groove", m, {ridges_filter()},
                               {"-o", "ridges.obj", "-l", "1", "-o", "valleys.obj", "-l", "2"}, &dir);

@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
     } else if (kind == "relief-torus" && argc == 4) {
       auto m = rktest::relief_torus(std::atol(argv[2]));
       rktest::write_ply(argv[3], m);
-      std::printf("faces %d mean_edge %.9g\n", m.n_faces(), reliefkit::mean_edge_length(m));
+      std::printf("faces %d mean_edge %.9g\n", m.n_faces(), reliefkit::edge_length_stats(m).mean);
     } else if (kind == "sphere" && argc == 6) {
       rktest::write_ply(argv[5], rktest::sphere(std::atof(argv[2]), std::atoi(argv[3]), std::atof(argv[4])));
     } else {

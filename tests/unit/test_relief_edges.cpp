@@ -177,7 +177,7 @@ TEST(RidgesValleys, GroovesAndCrests) {
   Profile pr;
   for (double noise : {0.0, 0.1}) {
     TriMesh m = rktest::height_field([&](double x, double) { return pr.z(x); }, 1.0, 150, 0.3, 4);
-    double h = mean_edge_length(m);
+    double h = edge_length_stats(m).mean;
     rktest::Rng rng(17);
     for (auto& p : m.vertices) p.z() += noise * h * rng.normal();
     RidgeValleyResult r = compute_ridges_valleys(m);

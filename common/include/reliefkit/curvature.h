@@ -89,6 +89,14 @@ struct ScaledCurvature {
 ScaledCurvature curvature_at_scale(const TriMesh& mesh, const Length& presmoothing, CurvatureEstimator estimator,
                                    Progress progress);
 
+/// The width of the surface's features (mesh units), from the curvature itself: the ratio of the
+/// 99th percentiles of |curvature| (max |k1|, |k2|) and of the size of the derivative tensor C
+/// over the vertices that count and are not on a boundary. For a smoothed step of width w
+/// (profile tanh(x / w)) it is about 0.75 w whatever the mesh resolution and unit (measured on the
+/// cylinder relief at 100 K, 1 M and 4 M faces: 0.029, 0.030, 0.030 for w = 0.04). 0 if the mesh
+/// has no curvature derivative.
+double feature_width(const TriMesh& mesh, const Curvature& curvature, const MeshScale& scale);
+
 /// Unit vertex normals by Max's weights (exact for vertices on a sphere). Vertices without a
 /// usable face get (0,0,1).
 std::vector<Vec3> vertex_normals(const TriMesh& mesh, const VertexFaces& vf);

@@ -43,13 +43,7 @@ struct EdgeStats {
   long long count = 0;  // counted once per face side (interior edges twice)
 };
 EdgeStats edge_length_stats(const TriMesh& mesh);
-/// Mean edge length only (parallel, no sorting): the length scale of parameter defaults.
-double mean_edge_length(const TriMesh& mesh);
-
-/// A length parameter: `value` when it is given (>= 0), else `default_edges` mean edge lengths.
-inline double length_or_default(double value, double default_edges, double mean_edge) {
-  return value >= 0 ? value : default_edges * mean_edge;
-}
+/// The length unit of parameters is MeshScale::edge (reliefkit/scale.h), not these statistics.
 
 /// Checks a mesh before a curvature computation. Throws InputError when the mesh has no
 /// faces (empty mesh or point cloud), a face refers to a missing vertex, or a coordinate is
