@@ -40,7 +40,7 @@ def p_enum(name, value, n):
 
 def ours(estimator, quality):
     return (OURS, [p_enum("estimator", estimator, 2),
-                   '<Param type="RichAbsPerc" name="presmoothing" value="0" min="0" max="1e9"/>',
+                   '<Param type="RichString" name="presmoothing" value="0"/>',
                    p_enum("quality", quality, 6)])
 
 
@@ -51,10 +51,11 @@ def meshlab(method, quality):  # method 0 Taubin, 3 PQF; quality 2 writes K1, 3 
 
 def demarcating(presmoothing):
     return ("Demarcating Curves", ['<Param type="RichFloat" name="threshold" value="1"/>',
-                                   f'<Param type="RichAbsPerc" name="presmoothing" value="{presmoothing}" min="0" max="1e9"/>',
+                                   f'<Param type="RichString" name="presmoothing" value="{presmoothing}"/>',
                                    '<Param type="RichFloat" name="min_length" value="4"/>',
                                    '<Param type="RichBool" name="per_vertex" value="true"/>',
-                                   '<Param type="RichBool" name="quality" value="false"/>'])
+                                   '<Param type="RichBool" name="quality" value="false"/>',
+                                   '<Param type="RichFloat" name="lift" value="0.2"/>'])
 
 
 SENTINEL = ("Select None", ['<Param type="RichBool" name="allFaces" value="true"/>',
@@ -216,7 +217,7 @@ def demarcating_speed(display, tmp, sizes):
         mesh = os.path.join(tmp, f"relief{n}.ply")
         out = subprocess.run([MAKE, "relief-torus", str(n), mesh], check=True, capture_output=True, text=True).stdout
         faces, edge = int(out.split()[1]), float(out.split()[3])
-        phases, _ = run(display, mesh, [demarcating(edge), meshlab(3, 0)], timed=True)
+        phases, _ = run(display, mesh, [demarcating("auto"), meshlab(3, 0)], timed=True)
         for label, (name, secs, mib) in zip(labels, phases):
             print(f"{faces:10d}  {label:48s} {secs:8.3f} {secs / (faces / 1e6):10.3f} {mib:8.1f}")
 

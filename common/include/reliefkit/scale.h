@@ -82,7 +82,7 @@ struct NoiseEstimate {
 /// account) is the local noise. The median over the vertices, calibrated on synthetic Gaussian
 /// noise (tests/unit/test_scale.cpp), is the estimate: relief features and sharp edges occupy a
 /// minority of the vertices and do not move it.
-NoiseEstimate estimate_noise(const TriMesh& mesh, const MeshScale& scale, int max_samples = 200000);
+NoiseEstimate estimate_noise(const TriMesh& mesh, const MeshScale& scale, int max_samples = 50000);
 
 /// Relative noise below which a mesh counts as clean (no automatic pre-smoothing): the
 /// residual a clean, finely sampled smooth surface leaves is well below it.
