@@ -51,8 +51,8 @@ const char* kRidgeInfo =
 void add_base_scale(RichParameterList& par) {
   add_length(par, "base_scale", Length::automatic(), "Base surface scale",
              "How far normals are averaged to find the smooth surface under the relief: about three times the width "
-             "of the relief's features (letters, figures). auto: 15 edge lengths, or a fifteenth of the "
-             "object's size if that is more.");
+             "of the relief's features (letters, figures). auto: 15 edge lengths; Relief Edges takes more where "
+             "the features it measures on the scan are wider (9 times their width).");
 }
 
 Length read_base_scale(FilterCall& call) { return read_length(call, "base_scale", "Base surface scale", 0.5, 10000); }

@@ -77,6 +77,26 @@ Relief disc_on_sphere(const ReliefShape& s, int levels) {
   return r;
 }
 
+Relief ring_on_sphere(const ReliefShape& s, int levels) {
+  const double a_in = 0.3, a_out = 0.6;  // angular radii of the ring's inner and outer edges
+  Relief r;
+  r.mesh = sphere(1.0, levels, s.jitter, s.seed);
+  for (auto& p : r.mesh.vertices) {
+    Vec3 n = p.normalized();
+    double ang = std::acos(std::clamp(n.z(), -1.0, 1.0));
+    r.base_normal.push_back(n);
+    p = n * (1 + s.height * step(a_out - ang, s.width) * step(ang - a_in, s.width));
+  }
+  for (double a0 : {a_in, a_out})
+    for (int k = 0; k < 4000; ++k) {
+      double a = 2 * M_PI * k / 4000;
+      Vec3 n(std::sin(a0) * std::cos(a), std::sin(a0) * std::sin(a), std::cos(a0));
+      r.boundary.push_back(n * (1 + 0.5 * s.height));
+    }
+  finish(r, s);
+  return r;
+}
+
 Relief discs_on_cylinder(const ReliefShape& s, int nu, int nz) {
   const double R = 1, R1 = 0.4, R2 = 0.3;
   Relief r;

@@ -28,6 +28,9 @@ struct ReliefShape {
 Relief disc_on_plane(const ReliefShape& s, int n = 150);
 /// Cap of angular radius 0.5 on the unit sphere (icosphere of `levels` subdivisions).
 Relief disc_on_sphere(const ReliefShape& s, int levels = 6);
+/// A raised ring (angular radii 0.3 to 0.6) on the unit sphere: two step lines, one convex and
+/// one concave in plan.
+Relief ring_on_sphere(const ReliefShape& s, int levels = 6);
 /// On a cylinder of radius 1, height 2 (400 x 128 cells): a disc of radius 0.4 raised by
 /// s.height on one side and a disc of radius 0.3 sunken by s.height on the other.
 Relief discs_on_cylinder(const ReliefShape& s, int nu = 400, int nz = 128);
