@@ -90,7 +90,11 @@ void log_curves(FilterCall& call, const DemarcatingParams& p, const DemarcatingR
                .arg(thousands(r.gradient.competing)));
   if (r.curves.segments.empty())
     call.log(QString("No demarcating curve is above the threshold: the layer is empty (meshlabserver then reports "
-                     "\"Failed saving\" for it). Lower \"Strength threshold\" (e.g. 0.5) or the minimum length."));
+                     "\"Failed saving\" for it). The strongest crossing seen has strength %1, %2 x the threshold %3: "
+                     "lower \"Strength threshold\" below %2, or the minimum length.")
+                 .arg(r.strongest_crossing, 0, 'g', 3)
+                 .arg(r.threshold > 0 ? p.relative_threshold * r.strongest_crossing / r.threshold : 0.0, 0, 'g', 3)
+                 .arg(r.threshold, 0, 'g', 3));
 }
 
 void apply_demarcating(FilterCall& call) {

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <tuple>
 
 #include "base_normals.h"
 #include "mesh_bridge.h"
@@ -47,6 +48,16 @@ const char* kRidgeInfo =
     "Method: zero crossings of the derivative of the maximal (minimal) curvature along its own direction, "
     "from the curvature-derivative tensor; Y. Ohtake, A. Belyaev, H.-P. Seidel, <b>\"Ridge-valley lines on "
     "meshes via implicit surface fitting\"</b>, SIGGRAPH 2004; thesis sections 3.4 and 5.5.1.";
+
+// Iterative solves that stop at their limit say so, with the residual and what to change.
+void log_unconverged(FilterCall& call, const BaseNormals& b, double scale, double edge) {
+  call.log(QString("Warning: the base-normal solve stopped at its limit of %1 conjugate-gradient iterations with a "
+                   "relative residual of %2 (asked: 0.001); the base surface is then less smooth than the base scale "
+                   "(%3 edge lengths) asks for. The result is kept; a smaller \"Base surface scale\" converges faster.")
+               .arg(b.iterations)
+               .arg(b.residual, 0, 'g', 2)
+               .arg(edge > 0 ? scale / edge : 0.0, 0, 'f', 1));
+}
 
 void add_base_scale(RichParameterList& par) {
   add_length(par, "base_scale", Length::automatic(), "Base surface scale",
@@ -145,8 +156,12 @@ void apply_relief(FilterCall& call) {
                .arg(r.automatic_angle / kDeg, 0, 'f', 1)
                .arg(r.noise_angle / kDeg, 0, 'f', 1));
   if (r.edges.segments.empty())
-    call.log("No relief edge passed the thresholds: the layer is empty (meshlabserver then reports \"Failed saving\" "
-             "for it). Lower \"Steepness, strong edges\" (e.g. 4 degrees) or raise \"Model error, strong edges\".");
+    call.log(QString("No relief edge passed the thresholds: the layer is empty (meshlabserver then reports \"Failed "
+                     "saving\" for it). The steepest edge crossing seen tilts by %1 deg (strong threshold %2 deg): set "
+                     "\"Steepness, strong edges\" below it, or raise \"Model error, strong edges\".")
+                 .arg(r.steepest_crossing / kDeg, 0, 'f', 1)
+                 .arg(r.strong_angle / kDeg, 0, 'f', 1));
+  if (!r.base.converged) log_unconverged(call, r.base, r.base_scale, r.scale.edge);
 }
 
 void base_parameters(MeshModel&, RichParameterList& par) {
@@ -175,6 +190,7 @@ void apply_base(FilterCall& call) {
       view.vertex_of[i]->Q() = float(std::acos(std::clamp(n[i].dot(b.normal[i]), -1.0, 1.0)) / kDeg);
   }
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!b.converged) log_unconverged(call, b, o.scale, ms.edge);
   call.log(QString("Base normals of %1 vertices at scale %2 (%6 edge lengths): %3 conjugate-gradient iterations "
                    "(residual %4), %5 s.")
                .arg(thousands(view.mesh.n_vertices()))
@@ -219,6 +235,17 @@ void apply_ridges(FilterCall& call) {
                .arg(lv)
                .arg(secs, 0, 'f', 3));
   call.log(scale_summary(r.scale, r.noise, r.presmoothing, p.presmoothing));
+  for (const auto& [name, layer, strongest, threshold] :
+       {std::tuple{"ridge", &r.ridges, r.strongest_ridge, r.ridge_threshold},
+        std::tuple{"valley", &r.valleys, r.strongest_valley, r.valley_threshold}})
+    if (layer->segments.empty())
+      call.log(QString("No %1 line is above the threshold: its layer is empty (meshlabserver then reports \"Failed "
+                       "saving\" for it). The strongest %1 seen has |curvature| %2, %3 x the threshold %4: lower "
+                       "\"Strength threshold\" below %3, or the minimum length.")
+                   .arg(name)
+                   .arg(strongest, 0, 'g', 3)
+                   .arg(threshold > 0 ? p.relative_threshold * strongest / threshold : 0.0, 0, 'g', 3)
+                   .arg(threshold, 0, 'g', 3));
 }
 
 }  // namespace

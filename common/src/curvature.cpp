@@ -202,8 +202,11 @@ inline void two_ring(const TriMesh& mesh, const VertexFaces& vf, int v, std::vec
   out.clear();
   const int stamp = v + 1;
   mark[v] = stamp;
+  // At most kMaxNeighbours are collected (the fit uses no more): around a vertex of very high
+  // valence (the pole of a fan or a UV sphere) every neighbour's two-ring would otherwise walk all
+  // of the pole's faces, and the cost would grow with the square of the valence.
   auto add_ring_of = [&](int c) {
-    for (int k = vf.offset[c]; k < vf.offset[c + 1]; ++k) {
+    for (int k = vf.offset[c]; k < vf.offset[c + 1] && out.size() < size_t(kMaxNeighbours); ++k) {
       const auto& f = mesh.faces[vf.face[k]];
       for (int j = 0; j < 3; ++j)
         if (mark[f[j]] != stamp) mark[f[j]] = stamp, out.push_back(f[j]);
@@ -211,7 +214,7 @@ inline void two_ring(const TriMesh& mesh, const VertexFaces& vf, int v, std::vec
   };
   add_ring_of(v);
   const size_t first = out.size();
-  for (size_t i = 0; i < first; ++i) add_ring_of(out[i]);
+  for (size_t i = 0; i < first && out.size() < size_t(kMaxNeighbours); ++i) add_ring_of(out[i]);
 }
 
 // Exponents (i, j) and factors c of the basis X^i Y^j * c:

@@ -80,42 +80,53 @@ VertexFaces vertex_faces(const TriMesh& mesh) {
   return vf;
 }
 
-// One ring of v: the other corners of its faces, each once (small linear dedupe; rings are short).
-static int collect_ring(const TriMesh& mesh, const VertexFaces& vf, int v, int* out, int cap) {
-  int n = 0;
+// One ring of v: the other corners of its faces, each once, in `out` (cleared first). Short rings
+// are deduplicated in place; long ones (fans, poles) by sorting, so the cost stays O(d log d).
+static void collect_ring(const TriMesh& mesh, const VertexFaces& vf, int v, std::vector<int>& out) {
+  out.clear();
+  const int faces = vf.offset[v + 1] - vf.offset[v];
   for (int k = vf.offset[v]; k < vf.offset[v + 1]; ++k) {
     const auto& f = mesh.faces[vf.face[k]];
-    int c = vf.corner[k];
+    const int c = vf.corner[k];
     for (int u : {f[(c + 1) % 3], f[(c + 2) % 3]}) {
       if (u == v) continue;
-      bool seen = false;
-      for (int i = 0; i < n && !seen; ++i) seen = out[i] == u;
-      if (!seen && n < cap) out[n++] = u;
+      if (faces <= 16) {
+        bool seen = false;
+        for (int w : out) seen = seen || w == u;
+        if (!seen) out.push_back(u);
+      } else {
+        out.push_back(u);
+      }
     }
   }
-  return n;
+  if (faces > 16) {
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+  }
 }
 
 VertexRing vertex_rings(const TriMesh& mesh, const VertexFaces& vf) {
   VertexRing r;
   const int nv = mesh.n_vertices();
   sized(r.offset, size_t(nv) + 1);
-  constexpr int kCap = 1024;  // neighbours kept per vertex (only pathological fans exceed it)
 #pragma omp parallel
   {
-    std::vector<int> tmp(kCap);
-#pragma omp for schedule(static)
-    for (int v = 0; v < nv; ++v) r.offset[v + 1] = collect_ring(mesh, vf, v, tmp.data(), kCap);
+    std::vector<int> tmp;
+#pragma omp for schedule(dynamic, 4096)
+    for (int v = 0; v < nv; ++v) {
+      collect_ring(mesh, vf, v, tmp);
+      r.offset[v + 1] = static_cast<int>(tmp.size());
+    }
   }
   for (int v = 0; v < nv; ++v) r.offset[v + 1] += r.offset[v];
   sized(r.vertex, size_t(r.offset[nv]));
 #pragma omp parallel
   {
-    std::vector<int> tmp(kCap);
-#pragma omp for schedule(static)
+    std::vector<int> tmp;
+#pragma omp for schedule(dynamic, 4096)
     for (int v = 0; v < nv; ++v) {
-      int n = collect_ring(mesh, vf, v, tmp.data(), kCap);
-      std::copy(tmp.begin(), tmp.begin() + n, r.vertex.begin() + r.offset[v]);
+      collect_ring(mesh, vf, v, tmp);
+      std::copy(tmp.begin(), tmp.end(), r.vertex.begin() + r.offset[v]);
     }
   }
   return r;

@@ -170,11 +170,11 @@ NoiseEstimate estimate_noise(const TriMesh& mesh, const MeshScale& scale, int ma
         const auto& f = mesh.faces[vf.face[k]];
         n += (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross(mesh.vertices[f[2]] - mesh.vertices[f[0]]);
         for (int j = 0; j < 3; ++j)
-          if (mark[f[j]] != v) mark[f[j]] = v, ring.push_back(f[j]);
+          if (mark[f[j]] != v && ring.size() < 64) mark[f[j]] = v, ring.push_back(f[j]);
       }
       const size_t first = ring.size();
-      for (size_t r = 0; r < first && ring.size() < 64; ++r)
-        for (int k = vf.offset[ring[r]]; k < vf.offset[ring[r] + 1]; ++k)
+      for (size_t r = 0; r < first && ring.size() < 64; ++r)  // bounded: high-valence neighbours
+        for (int k = vf.offset[ring[r]]; k < vf.offset[ring[r] + 1] && ring.size() < 64; ++k)
           for (int u : mesh.faces[vf.face[k]])
             if (mark[u] != v) mark[u] = v, ring.push_back(u);
       const int m = static_cast<int>(ring.size()) + 1;

@@ -128,6 +128,7 @@ DemarcatingResult compute_demarcating(const TriMesh& mesh, const DemarcatingPara
   std::vector<double> strengths;
   o.all_strengths = &strengths;
   Polylines candidates = demarcating_curves(mesh, r.curvature, r.gradient, o);
+  for (double x : strengths) r.strongest_crossing = std::max(r.strongest_crossing, x);
   r.automatic_threshold = automatic_curve_threshold(r.median_strength, std::move(strengths));
   r.noise_threshold = noise_curve_strength(r.noise, r.presmoothing / r.scale.edge, p.estimator) / (r.scale.edge * r.scale.edge);
   r.automatic_threshold = std::max(r.automatic_threshold, r.noise_threshold);

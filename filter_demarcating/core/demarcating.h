@@ -79,6 +79,7 @@ struct DemarcatingResult : ScaledCurvature {
   double automatic_threshold = 0;  // automatic_curve_threshold(median strength, all crossings)
   double noise_threshold = 0;    // what noise alone draws (noise_curve_strength), 1/length^2
   double threshold = 0;          // absolute strength threshold used = relative x automatic
+  double strongest_crossing = 0; // the strongest zero crossing seen (to explain an empty result)
   double min_length = 0;         // used, mesh units
 };
 

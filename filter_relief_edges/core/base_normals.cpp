@@ -120,6 +120,7 @@ BaseNormals estimate_base_normals(const TriMesh& mesh, const std::vector<Vec3>& 
     for (int v = 0; v < nv; ++v) p[v] = z[v] + beta.cwiseProduct(p[v]);
     if (opt.progress && it % 10 == 0) opt.progress(std::min(95, 10 + it), "Base normals: diffusion");
   }
+  out.converged = out.residual <= opt.tolerance;
   out.normal.swap(x);
   for (int v = 0; v < nv; ++v) {
     double l = out.normal[v].norm();

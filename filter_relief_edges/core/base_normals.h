@@ -26,6 +26,7 @@ struct BaseNormals {
   std::vector<Vec3> normal;  // #V unit base normals
   int iterations = 0;        // conjugate-gradient iterations used
   double residual = 0;       // final relative residual
+  bool converged = true;     // residual <= tolerance (else stopped at max_iterations)
 };
 
 /// Base normals from the surface normals (one per vertex, e.g. Curvature::normal).

@@ -215,6 +215,7 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
   std::vector<double> above_noise;
   for (const auto& sg : all.segments) {
     const double a = 0.5 * (all.strength[sg[0]] + all.strength[sg[1]]);
+    r.steepest_crossing = std::max(r.steepest_crossing, a);
     if (a > r.noise_angle) above_noise.push_back(a);
   }
   r.automatic_angle =

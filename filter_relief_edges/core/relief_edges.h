@@ -66,6 +66,7 @@ struct ReliefEdgeResult : ScaledCurvature {  // scale, noise, pre-smoothing used
   double strong_angle = 0, weak_angle = 0;  // hysteresis angles used
   double automatic_angle = 0;     // automatic_curve_threshold of the crossing tilts
   double noise_angle = 0;         // noise_tilt: what the estimated noise alone tilts the surface by
+  double steepest_crossing = 0;   // the steepest edge crossing seen, radians (to explain an empty result)
   double base_scale = 0, edge_smoothing = 0, min_length = 0, fit_radius = 0;  // used, mesh units
   double feature_width = 0;       // feature_width() of the pre-smoothed surface, mesh units
   Polylines edges;

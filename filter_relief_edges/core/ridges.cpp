@@ -77,6 +77,8 @@ RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyP
   std::vector<double> str_r, str_v;
   Polylines cand_r = ridge_lines(mesh, r.curvature, false, p.relative_threshold * kNoiseFactor * noise_r, &str_r);
   Polylines cand_v = ridge_lines(mesh, r.curvature, true, p.relative_threshold * kNoiseFactor * noise_v, &str_v);
+  for (double x : str_r) r.strongest_ridge = std::max(r.strongest_ridge, x);
+  for (double x : str_v) r.strongest_valley = std::max(r.strongest_valley, x);
   r.ridge_threshold = p.relative_threshold * automatic_curve_threshold(noise_r, std::move(str_r));
   r.valley_threshold = p.relative_threshold * automatic_curve_threshold(noise_v, std::move(str_v));
   r.ridges = drop_short_chains(keep_strong_segments(cand_r, r.ridge_threshold), r.min_length);

@@ -29,6 +29,7 @@ struct RidgeValleyResult : ScaledCurvature {  // scale, noise, pre-smoothing use
   Polylines ridges, valleys;
   double min_length = 0;                             // used, mesh units
   double ridge_threshold = 0, valley_threshold = 0;  // absolute |k| thresholds used, 1/length
+  double strongest_ridge = 0, strongest_valley = 0;  // strongest crossings seen (to explain empty layers)
 };
 
 /// Ridges or valleys from an existing curvature (with derivatives); threshold absolute.

@@ -198,3 +198,16 @@ TEST(PortableParameters, ACurveLayerSelectedByMistakeIsNamedAsSuch) {
   EXPECT_NE(run.output.find("select the scanned mesh layer"), std::string::npos) << run.output;
   EXPECT_EQ(run.output.find("Poisson"), std::string::npos) << run.output;
 }
+
+TEST(EmptyResults, SayWhatWasSeenAndWhatToChange) {
+  const std::string dir = temp_dir("empty_results");
+  write_text(dir + "/s.mlx",
+             mlx_script({mlx_filter("Demarcating Curves",
+                                    {param_float("threshold", 1000), param_string("presmoothing", "auto"),
+                                     param_float("min_length", 4), param_bool("per_vertex", false),
+                                     param_bool("quality", false), param_float("lift", 0)})}));
+  ServerRun run = run_meshlabserver({"-i", kCoin, "-o", dir + "/c.obj", "-l", "1", "-s", dir + "/s.mlx"});
+  EXPECT_FALSE(run.crashed) << run.output;
+  EXPECT_NE(run.output.find("No demarcating curve is above the threshold"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("The strongest crossing seen has strength"), std::string::npos) << run.output;
+}

@@ -2,7 +2,9 @@
 // a crash and never a NaN.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "reliefkit/curvature.h"
@@ -98,4 +100,28 @@ TEST(Robustness, SingleTriangle) {
   Curvature c = compute_curvature(m);
   expect_all_finite(c);
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(c.k1[i], 0, 1e-12);
+}
+
+TEST(Robustness, HighValenceFanCostsLinearTime) {
+  // A fan: one vertex in 10,000 and in 100,000 triangles. Before the two-ring and ring
+  // collections were bounded/sorted, every rim vertex walked all of the pole's faces (the
+  // 100,000-triangle fan took over 10 s); now the time grows like the face count.
+  auto fan = [](int n) {
+    TriMesh m;
+    m.vertices.push_back({0, 0, 0.2});
+    for (int i = 0; i < n; ++i) m.vertices.push_back({std::cos(2 * M_PI * i / n), std::sin(2 * M_PI * i / n), 0});
+    for (int i = 0; i < n; ++i) m.faces.push_back({0, 1 + i, 1 + (i + 1) % n});
+    return m;
+  };
+  auto seconds = [](const TriMesh& m) {
+    auto t0 = std::chrono::steady_clock::now();
+    ScaledCurvature sc = curvature_at_scale(m, Length::automatic(), CurvatureEstimator::Jet, nullptr);
+    EXPECT_EQ(sc.curvature.k1.size(), m.vertices.size());
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  seconds(fan(1000));  // warm-up
+  const double small = seconds(fan(10000)), large = seconds(fan(100000));
+  std::printf("fan of 10,000 triangles %.3f s, of 100,000 %.3f s (ratio %.1f; quadratic would be 100)\n", small,
+              large, large / small);
+  EXPECT_LT(large / small, 30.0);
 }
