@@ -61,7 +61,7 @@ void apply(FilterCall& call) {
   const int estimator = read_enum(call, "estimator", "Estimator", kEstimators.size());
   const Length presmoothing = read_presmoothing(call);
   const auto q = static_cast<Quantity>(read_enum(call, "quality", "Vertex quality", kQuantities.size()));
-  View view = view_of(call.mesh);
+  View view = view_of(call.mesh, call.log);
   CurvatureOptions opt;
   opt.estimator = estimator == 1 ? CurvatureEstimator::FaceFit : CurvatureEstimator::Jet;
   auto t1 = std::chrono::steady_clock::now();
@@ -80,9 +80,7 @@ void apply(FilterCall& call) {
   auto h_b = Alloc::GetPerVertexAttribute<Scalarm>(cm, "dcurv_b");
   auto h_c = Alloc::GetPerVertexAttribute<Scalarm>(cm, "dcurv_c");
   auto h_d = Alloc::GetPerVertexAttribute<Scalarm>(cm, "dcurv_d");
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < nv; ++i) {
-    CVertexO* v = view.vertex_of[i];
+  auto write = [&](int i, CVertexO* v) {
     v->PD1() = Point3m(Scalarm(c.dir1[i].x()), Scalarm(c.dir1[i].y()), Scalarm(c.dir1[i].z()));
     v->PD2() = Point3m(Scalarm(c.dir2[i].x()), Scalarm(c.dir2[i].y()), Scalarm(c.dir2[i].z()));
     v->K1() = Scalarm(c.k1[i]);
@@ -94,7 +92,10 @@ void apply(FilterCall& call) {
     h_b[v] = Scalarm(c.dcurv[i].b);
     h_c[v] = Scalarm(c.dcurv[i].c);
     h_d[v] = Scalarm(c.dcurv[i].d);
-  }
+  };
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < nv; ++i) write(i, view.vertex_of[i]);
+  for (const auto& [i, v] : view.also) write(i, v);  // welded duplicates
 
   auto t3 = std::chrono::steady_clock::now();
   auto sec = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };

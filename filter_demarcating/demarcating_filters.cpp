@@ -104,7 +104,7 @@ void apply_demarcating(FilterCall& call) {
   const bool per_vertex = read_bool(call, "per_vertex", "Write per-vertex results");
   const bool quality = read_bool(call, "quality", "Vertex quality = curvature across");
   const double lift = read_lift(call);
-  View view = view_of(call.mesh);
+  View view = view_of(call.mesh, call.log);
   DemarcatingResult r = compute_demarcating(view.mesh, p);
 
   const QString label = derived_label(call.mesh, "demarcating curves");
@@ -116,7 +116,7 @@ void apply_demarcating(FilterCall& call) {
   }
   if (quality) {
     call.mesh.updateDataMask(MeshModel::MM_VERTQUALITY);
-    for (size_t i = 0; i < view.vertex_of.size(); ++i) view.vertex_of[i]->Q() = float(r.gradient.kappa[i]);
+    for_each_vertex(view, [&](int i, CVertexO* v) { v->Q() = float(r.gradient.kappa[i]); });
   }
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   log_curves(call, p, r, label, view.mesh.n_faces(), secs);
@@ -141,7 +141,7 @@ void apply_shading(FilterCall& call) {
   const double contrast = read_float(call, "contrast", "Contrast", 0, 1000);
   const bool darken = read_bool(call, "darken", "Darken along demarcating curves");
   const double darkness = read_float(call, "darkness", "Curve darkness", 0, 1);
-  View view = view_of(call.mesh);
+  View view = view_of(call.mesh, call.log);
   std::vector<double> grey;
   long long segments = 0;
   if (darken) {
@@ -156,11 +156,11 @@ void apply_shading(FilterCall& call) {
     call.log(scale_summary(sc.scale, sc.noise, sc.presmoothing, p.presmoothing));
   }
   call.mesh.updateDataMask(MeshModel::MM_VERTCOLOR | MeshModel::MM_VERTQUALITY);
-  for (size_t i = 0; i < view.vertex_of.size(); ++i) {
+  for_each_vertex(view, [&](int i, CVertexO* v) {
     auto g = static_cast<unsigned char>(std::lround(255 * std::clamp(grey[i], 0.0, 1.0)));
-    view.vertex_of[i]->C() = vcg::Color4b(g, g, g, 255);
-    view.vertex_of[i]->Q() = float(grey[i]);
-  }
+    v->C() = vcg::Color4b(g, g, g, 255);
+    v->Q() = float(grey[i]);
+  });
   call.log(QString("Curvature shading of %1 vertices (contrast %2)%3.")
                .arg(thousands(view.mesh.n_vertices()))
                .arg(contrast, 0, 'g', 3)

@@ -115,7 +115,7 @@ void apply_relief(FilterCall& call) {
   const bool quality = read_bool(call, "quality", "Vertex quality = curvature across the edge");
   const double lift = read_lift(call);
   p.progress = call.progress;
-  View view = view_of(call.mesh);
+  View view = view_of(call.mesh, call.log);
   ReliefEdgeResult r = compute_relief_edges(view.mesh, p);
   Polylines edges = r.edges;
   for (auto& s : edges.strength) s /= kDeg;  // layer quality in degrees
@@ -130,7 +130,7 @@ void apply_relief(FilterCall& call) {
   }
   if (quality) {
     call.mesh.updateDataMask(MeshModel::MM_VERTQUALITY);
-    for (size_t i = 0; i < view.vertex_of.size(); ++i) view.vertex_of[i]->Q() = float(r.G[i]);
+    for_each_vertex(view, [&](int i, CVertexO* v) { v->Q() = float(r.G[i]); });
   }
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   call.log(QString("Relief edges: %1 segments in %2 curves (%6 gaps bridged), length %3, layer \"%4\"; %5 s.")
@@ -174,7 +174,7 @@ void apply_base(FilterCall& call) {
   auto t0 = std::chrono::steady_clock::now();
   const Length scale = read_base_scale(call);
   const bool quality = read_bool(call, "quality", "Vertex quality = tilt against the base");
-  View view = view_of(call.mesh);
+  View view = view_of(call.mesh, call.log);
   const MeshScale ms = mesh_scale(view.mesh);
   scale.check("Base surface scale", 0.5, 10000, ms.edge);
   BaseNormalOptions o;
@@ -186,8 +186,9 @@ void apply_base(FilterCall& call) {
   write_vertex_vectors(call.mesh.cm, view, "base_normal", b.normal);
   if (quality) {
     call.mesh.updateDataMask(MeshModel::MM_VERTQUALITY);
-    for (size_t i = 0; i < view.vertex_of.size(); ++i)
-      view.vertex_of[i]->Q() = float(std::acos(std::clamp(n[i].dot(b.normal[i]), -1.0, 1.0)) / kDeg);
+    for_each_vertex(view, [&](int i, CVertexO* v) {
+      v->Q() = float(std::acos(std::clamp(n[i].dot(b.normal[i]), -1.0, 1.0)) / kDeg);
+    });
   }
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!b.converged) log_unconverged(call, b, o.scale, ms.edge);
@@ -219,7 +220,7 @@ void apply_ridges(FilterCall& call) {
   p.min_length_edges = read_float(call, "min_length", "Minimum curve length", 0, 1e6);
   const double lift = read_lift(call);
   p.progress = call.progress;
-  View view = view_of(call.mesh);
+  View view = view_of(call.mesh, call.log);
   RidgeValleyResult r = compute_ridges_valleys(view.mesh, p);
   const QString lr = derived_label(call.mesh, "ridges"), lv = derived_label(call.mesh, "valleys");
   add_curve_layer(call.doc, lr, r.ridges, vcg::Color4b(200, 30, 30, 255), &r.curvature.normal, lift * r.scale.edge);

@@ -5,7 +5,7 @@
 
 namespace reliefkit::ml {
 
-View view_of(MeshModel& m) {
+View view_of(MeshModel& m, const std::function<void(const QString&)>& log) {
   if (m.cm.fn == 0 && m.cm.en > 0)
     throw InputError(qUtf8Printable(
         QString("the current layer \"%1\" holds curves (%2 edges), not a surface: select the scanned mesh layer "
@@ -14,14 +14,18 @@ View view_of(MeshModel& m) {
             .arg(thousands(m.cm.en))));
   View v = from_vcg(m.cm);
   require_triangles(v.mesh);
+  repair_view(v);
+  const std::string said = v.repair.summary();
+  if (!said.empty() && log) log(QString::fromStdString(said));
   return v;
 }
 
 void write_vertex_attribute(CMeshO& m, const View& v, const char* name, const std::vector<double>& values) {
   auto h = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<Scalarm>(m, std::string(name));
-  const long n = static_cast<long>(std::min(v.vertex_of.size(), values.size()));
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < n; ++i) h[v.vertex_of[i]] = Scalarm(values[i]);
+  const int n = static_cast<int>(values.size());
+  for_each_vertex(v, [&](int i, CVertexO* p) {
+    if (i < n) h[p] = Scalarm(values[i]);
+  });
 }
 
 MeshModel* add_curve_layer(MeshDocument& doc, const QString& label, const Polylines& curves, vcg::Color4b color,
@@ -63,10 +67,10 @@ QString derived_label(const MeshModel& m, const QString& what) {
 
 void write_vertex_vectors(CMeshO& m, const View& v, const char* name, const std::vector<Vec3>& values) {
   auto h = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<Point3m>(m, std::string(name));
-  const long n = static_cast<long>(std::min(v.vertex_of.size(), values.size()));
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < n; ++i)
-    h[v.vertex_of[i]] = Point3m(Scalarm(values[i].x()), Scalarm(values[i].y()), Scalarm(values[i].z()));
+  const int n = static_cast<int>(values.size());
+  for_each_vertex(v, [&](int i, CVertexO* p) {
+    if (i < n) h[p] = Point3m(Scalarm(values[i].x()), Scalarm(values[i].y()), Scalarm(values[i].z()));
+  });
 }
 
 QString thousands(long long n) {

@@ -4,6 +4,7 @@
 #include <common/meshmodel.h>
 
 #include <QString>
+#include <functional>
 #include <vector>
 
 #include "reliefkit/mesh.h"
@@ -14,9 +15,11 @@ namespace reliefkit::ml {
 
 using View = VcgView<CMeshO>;
 
-/// Copies the layer's live vertices and faces. Throws InputError if the layer has no faces or
-/// invalid coordinates (require_triangles).
-View view_of(MeshModel& m);
+/// Copies the layer's live vertices and faces and repairs the copy for the computation
+/// (repair_view: coincident vertices welded, duplicated faces dropped, orientation made coherent;
+/// what was repaired goes to `log`). Throws InputError if the layer holds only curves, has no
+/// faces or invalid coordinates (require_triangles).
+View view_of(MeshModel& m, const std::function<void(const QString&)>& log);
 
 /// Writes a named per-vertex float attribute (created if missing, overwritten if present).
 /// Vertices not in the view keep their old value.

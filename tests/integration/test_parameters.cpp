@@ -9,6 +9,7 @@
 
 #include "mesh_files.h"
 #include "reliefkit/scale.h"
+#include "reliefs.h"
 #include "server.h"
 
 using namespace rktest;
@@ -210,4 +211,42 @@ TEST(EmptyResults, SayWhatWasSeenAndWhatToChange) {
   EXPECT_FALSE(run.crashed) << run.output;
   EXPECT_NE(run.output.find("No demarcating curve is above the threshold"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("The strongest crossing seen has strength"), std::string::npos) << run.output;
+}
+
+TEST(RepairInMeshLab, DamagedCopiesGiveTheGoodMeshCurvesAndSaySo) {
+  ReliefShape s;
+  s.noise = 0.05;
+  const Relief r = disc_on_sphere(s, 5);
+  const std::string filter = mlx_filter(
+      "Demarcating Curves", {param_float("threshold", 1), param_string("presmoothing", "auto"),
+                             param_float("min_length", 4), param_bool("per_vertex", true),
+                             param_bool("quality", false), param_float("lift", 0)});
+  auto run = [&](const std::string& name, const reliefkit::TriMesh& m, std::string* log) {
+    std::string dir;
+    ServerRun sr = run_filters(name, m, {filter}, {"-o", "c.obj", "-l", "1"}, &dir);
+    EXPECT_EQ(sr.status, 0) << name << ": " << sr.output;
+    if (log) *log = sr.output;
+    return read_mesh(dir + "/c.obj");
+  };
+  const MeshFile good = run("repair_good", r.mesh, nullptr);
+  ASSERT_GT(good.edges.size(), 100u);
+  reliefkit::TriMesh flipped = r.mesh, soup, doubled = r.mesh;
+  for (size_t f = 0; f < flipped.faces.size(); f += 2) std::swap(flipped.faces[f][1], flipped.faces[f][2]);
+  for (const auto& f : r.mesh.faces) {
+    const int b = soup.n_vertices();
+    for (int j = 0; j < 3; ++j) soup.vertices.push_back(r.mesh.vertices[f[j]]);
+    soup.faces.push_back({b, b + 1, b + 2});
+  }
+  doubled.faces.insert(doubled.faces.end(), r.mesh.faces.begin(), r.mesh.faces.end());
+  const std::pair<const char*, const reliefkit::TriMesh*> cases[] = {
+      {"flipped", &flipped}, {"soup", &soup}, {"doubled", &doubled}};
+  for (const auto& [name, mesh] : cases) {
+    std::string log;
+    const MeshFile damaged = run(std::string("repair_") + name, *mesh, &log);
+    EXPECT_NE(log.find("Repaired for the computation"), std::string::npos) << name << ": " << log;
+    EXPECT_EQ(damaged.edges.size(), good.edges.size()) << name;
+    const double tol = 1e-4 * r.mean_edge;
+    EXPECT_DOUBLE_EQ(near_share(damaged, good, tol), 1.0) << name;
+    EXPECT_DOUBLE_EQ(near_share(good, damaged, tol), 1.0) << name;
+  }
 }

@@ -7,6 +7,7 @@
 
 #include "reliefkit/memory.h"
 #include "reliefkit/mesh.h"
+#include "reliefkit/repair.h"
 
 namespace reliefkit {
 
@@ -14,7 +15,39 @@ template <class MeshT>
 struct VcgView {
   TriMesh mesh;
   std::vector<typename MeshT::VertexPointer> vertex_of;  // TriMesh index -> vcg vertex
+  /// After repair_view: further vcg vertices welded into TriMesh vertex `first`; results are
+  /// written to them too.
+  std::vector<std::pair<int, typename MeshT::VertexPointer>> also;
+  RepairReport repair;
 };
+
+/// Calls f(i, vcg vertex) for every vcg vertex of the view: TriMesh vertex i's own and those
+/// welded into it.
+template <class MeshT, class F>
+void for_each_vertex(const VcgView<MeshT>& view, F f) {
+  for (size_t i = 0; i < view.vertex_of.size(); ++i) f(static_cast<int>(i), view.vertex_of[i]);
+  for (const auto& [i, v] : view.also) f(i, v);
+}
+
+/// Replaces the view's mesh by repair_for_computation() of it (welded, deduplicated, coherently
+/// oriented) and re-maps the vcg vertices.
+template <class MeshT>
+void repair_view(VcgView<MeshT>& view) {
+  RepairedMesh r = repair_for_computation(view.mesh);
+  view.repair = r.report;
+  if (!r.report.changed()) return;
+  std::vector<typename MeshT::VertexPointer> first(r.mesh.vertices.size(), nullptr);
+  view.also.clear();
+  for (size_t i = 0; i < view.vertex_of.size(); ++i) {
+    const int j = r.of_input[i];
+    if (first[j] == nullptr)
+      first[j] = view.vertex_of[i];
+    else
+      view.also.push_back({j, view.vertex_of[i]});
+  }
+  view.vertex_of.swap(first);
+  view.mesh = std::move(r.mesh);
+}
 
 template <class MeshT>
 VcgView<MeshT> from_vcg(MeshT& m) {

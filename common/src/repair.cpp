@@ -1,0 +1,183 @@
+#include "reliefkit/repair.h"
+
+#include <algorithm>
+#include <array>
+#include <numeric>
+#include <sstream>
+#include <tuple>
+
+namespace reliefkit {
+
+std::string RepairReport::summary() const {
+  if (!changed() && conflicting_parts == 0) return "";
+  std::ostringstream s;
+  s << "Repaired for the computation (the layer itself is unchanged):";
+  const char* sep = " ";
+  auto item = [&](long long n, const char* what) {
+    if (n > 0) s << sep << n << " " << what, sep = "; ";
+  };
+  item(welded_vertices, "coincident vertices welded");
+  item(duplicate_faces, "duplicated faces ignored");
+  item(collapsed_faces, "faces collapsed by welding ignored");
+  item(flipped_faces, "faces flipped to agree with their neighbours");
+  item(reversed_parts, "closed parts turned outside out");
+  if (conflicting_parts > 0)
+    s << sep << conflicting_parts
+      << " parts cannot be oriented coherently (Moebius-like; run Filters > Cleaning and Repairing > Re-Orient all "
+         "faces coherentely to see where)";
+  s << ".";
+  return s.str();
+}
+
+RepairedMesh repair_for_computation(const TriMesh& in) {
+  RepairedMesh out;
+  RepairReport& rep = out.report;
+  const int nv = in.n_vertices();
+
+  // 1. Weld vertices at exactly the same position (sort by coordinates).
+  std::vector<int> order(nv);
+  std::iota(order.begin(), order.end(), 0);
+  auto less = [&](int a, int b) {
+    const Vec3 &p = in.vertices[a], &q = in.vertices[b];
+    return std::tie(p.x(), p.y(), p.z(), a) < std::tie(q.x(), q.y(), q.z(), b);
+  };
+  std::sort(order.begin(), order.end(), less);
+  out.of_input.assign(nv, -1);
+  for (int i = 0; i < nv; ++i) {
+    const int v = order[i];
+    if (i > 0 && in.vertices[v] == in.vertices[order[i - 1]] && in.vertices[v].allFinite()) {
+      out.of_input[v] = out.of_input[order[i - 1]];
+      ++rep.welded_vertices;
+    } else {
+      out.of_input[v] = static_cast<int>(out.mesh.vertices.size());
+      out.mesh.vertices.push_back(in.vertices[v]);
+    }
+  }
+  // Keep the repaired vertices in input order where nothing was welded (stable results).
+  if (rep.welded_vertices == 0) {
+    out.mesh.vertices = in.vertices;
+    std::iota(out.of_input.begin(), out.of_input.end(), 0);
+  }
+
+  // 2. Faces on the welded vertices; drop collapsed and duplicated ones.
+  std::vector<std::array<int, 3>> faces;
+  faces.reserve(in.faces.size());
+  for (const auto& f : in.faces) {
+    if (f[0] < 0 || f[1] < 0 || f[2] < 0 || f[0] >= nv || f[1] >= nv || f[2] >= nv) {
+      faces.push_back(f);  // left for require_triangles() to refuse
+      continue;
+    }
+    std::array<int, 3> g{out.of_input[f[0]], out.of_input[f[1]], out.of_input[f[2]]};
+    if (rep.welded_vertices > 0 && (g[0] == g[1] || g[1] == g[2] || g[0] == g[2])) {
+      ++rep.collapsed_faces;
+      continue;
+    }
+    faces.push_back(g);
+  }
+  {
+    std::vector<std::pair<std::array<int, 3>, int>> keyed(faces.size());
+    for (size_t i = 0; i < faces.size(); ++i) {
+      auto k = faces[i];
+      std::sort(k.begin(), k.end());
+      keyed[i] = {k, static_cast<int>(i)};
+    }
+    std::sort(keyed.begin(), keyed.end());
+    std::vector<char> drop(faces.size(), 0);
+    for (size_t i = 1; i < keyed.size(); ++i)
+      if (keyed[i].first == keyed[i - 1].first && keyed[i].first[0] != keyed[i].first[1]) {
+        drop[keyed[i].second] = 1;
+        ++rep.duplicate_faces;
+      }
+    for (size_t i = 0; i < faces.size(); ++i)
+      if (!drop[i]) out.mesh.faces.push_back(faces[i]);
+  }
+
+  // 3. Coherent orientation per part: breadth-first over manifold edges (exactly two faces).
+  const int nf = out.mesh.n_faces();
+  const int nrv = out.mesh.n_vertices();
+  struct HalfEdge {
+    int a, b, face;  // a < b; `face` traverses it from a to b when forward
+    bool forward;
+  };
+  std::vector<HalfEdge> he;
+  he.reserve(size_t(nf) * 3);
+  for (int f = 0; f < nf; ++f) {
+    const auto& t = out.mesh.faces[f];
+    if (t[0] < 0 || t[0] >= nrv || t[1] < 0 || t[1] >= nrv || t[2] < 0 || t[2] >= nrv) continue;
+    for (int j = 0; j < 3; ++j) {
+      int a = t[j], b = t[(j + 1) % 3];
+      if (a == b) continue;
+      he.push_back({std::min(a, b), std::max(a, b), f, a < b});
+    }
+  }
+  std::sort(he.begin(), he.end(), [](const HalfEdge& x, const HalfEdge& y) {
+    return std::tie(x.a, x.b, x.face) < std::tie(y.a, y.b, y.face);
+  });
+  // Adjacency: for each manifold edge, the two faces and whether they agree as they are.
+  std::vector<std::vector<std::pair<int, bool>>> adj(nf);  // neighbour, "same direction" (= inconsistent)
+  std::vector<char> closed_edge_ok(nf, 1);                 // every edge of the face has two faces
+  for (size_t i = 0; i < he.size();) {
+    size_t j = i;
+    while (j < he.size() && he[j].a == he[i].a && he[j].b == he[i].b) ++j;
+    if (j - i == 2) {
+      const bool same = he[i].forward == he[i + 1].forward;  // both traverse a->b: inconsistent
+      adj[he[i].face].push_back({he[i + 1].face, same});
+      adj[he[i + 1].face].push_back({he[i].face, same});
+    } else {
+      for (size_t k = i; k < j; ++k) closed_edge_ok[he[k].face] = 0;
+    }
+    i = j;
+  }
+  std::vector<signed char> flip(nf, -1);
+  std::vector<int> queue, part;
+  for (int seed = 0; seed < nf; ++seed) {
+    if (flip[seed] >= 0) continue;
+    flip[seed] = 0;
+    queue.assign(1, seed);
+    part.clear();
+    bool conflict = false, closed = true;
+    for (size_t q = 0; q < queue.size(); ++q) {
+      const int f = queue[q];
+      part.push_back(f);
+      closed = closed && closed_edge_ok[f];
+      for (const auto& [g, same] : adj[f]) {
+        const signed char want = static_cast<signed char>(flip[f] ^ (same ? 1 : 0));
+        if (flip[g] < 0) {
+          flip[g] = want;
+          queue.push_back(g);
+        } else if (flip[g] != want) {
+          conflict = true;
+        }
+      }
+    }
+    if (conflict) {
+      ++rep.conflicting_parts;
+      for (int f : part) flip[f] = 0;  // not safe to change: leave the part as it was
+      continue;
+    }
+    long long flips = 0;
+    for (int f : part) flips += flip[f];
+    if (2 * flips > static_cast<long long>(part.size())) {  // keep the majority's orientation
+      for (int f : part) flip[f] ^= 1;
+      flips = static_cast<long long>(part.size()) - flips;
+    }
+    rep.flipped_faces += flips;
+    if (closed) {  // a closed part: normals outwards (positive signed volume)
+      double vol = 0;
+      for (int f : part) {
+        const auto& t = out.mesh.faces[f];
+        double v6 = out.mesh.vertices[t[0]].dot(out.mesh.vertices[t[1]].cross(out.mesh.vertices[t[2]]));
+        vol += flip[f] ? -v6 : v6;
+      }
+      if (vol < 0) {
+        for (int f : part) flip[f] ^= 1;
+        ++rep.reversed_parts;
+      }
+    }
+    for (int f : part)
+      if (flip[f]) std::swap(out.mesh.faces[f][1], out.mesh.faces[f][2]);
+  }
+  return out;
+}
+
+}  // namespace reliefkit
