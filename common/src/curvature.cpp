@@ -420,6 +420,10 @@ ScaledCurvature curvature_at_scale(const TriMesh& mesh, const Length& presmoothi
   ScaledCurvature out;
   report(progress, 0, "Scale and noise level");
   out.scale = mesh_scale(mesh);
+  if (!(out.scale.edge > 0) || !std::isfinite(1 / out.scale.edge) || !std::isfinite(out.scale.object_size))
+    throw InputError("the mesh has no usable edge length (its edges have zero or non-finite length): nothing to "
+                     "measure. Remove degenerate faces first, e.g. Filters > Cleaning and Repairing > Remove Zero "
+                     "Area Faces and Merge Close Vertices.");
   out.noise = estimate_noise(mesh, out.scale);
   presmoothing.check("Pre-smoothing", 0, 100, out.scale.edge);
   out.presmoothing = presmoothing.resolve(out.scale.edge, automatic_presmoothing(out.noise, out.scale));

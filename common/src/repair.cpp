@@ -33,6 +33,16 @@ RepairedMesh repair_for_computation(const TriMesh& in) {
   RepairedMesh out;
   RepairReport& rep = out.report;
   const int nv = in.n_vertices();
+  // A face referring to a missing vertex is not repairable here: return the mesh as it is, for
+  // require_triangles() to refuse with its message.
+  for (const auto& f : in.faces)
+    for (int v : f)
+      if (v < 0 || v >= nv) {
+        out.mesh = in;
+        out.of_input.resize(nv);
+        std::iota(out.of_input.begin(), out.of_input.end(), 0);
+        return out;
+      }
 
   // 1. Weld vertices at exactly the same position (sort by coordinates).
   std::vector<int> order(nv);

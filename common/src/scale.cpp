@@ -265,6 +265,10 @@ TriMesh noise_patch(double relative_noise, int n) {
   return m;
 }
 
+int noise_patch_cells(long long faces) {
+  return static_cast<int>(std::clamp(std::sqrt(double(faces) / 2), 30.0, 100.0));
+}
+
 double percentile(std::vector<double> values, double q) {
   if (values.empty()) return 0;
   auto k = values.begin() + static_cast<long>(std::clamp(q, 0.0, 1.0) * double(values.size() - 1));

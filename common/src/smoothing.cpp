@@ -11,18 +11,19 @@ int diffusion_steps(const TriMesh& mesh, double scale) {
   if (!(scale > 0)) return 0;
   // The typical squared edge length: a median, so a few huge faces (a coarse plate, debris
   // beside the scan) do not cut the number of steps and leave the object unsmoothed.
-  std::vector<float> l2;
+  std::vector<double> l2;
   l2.reserve(mesh.faces.size() * 3);
   for (const auto& f : mesh.faces)
     for (int j = 0; j < 3; ++j) {
       double x = (mesh.vertices[f[j]] - mesh.vertices[f[(j + 1) % 3]]).squaredNorm();
-      if (std::isfinite(x) && x > 0) l2.push_back(float(x));
+      if (std::isfinite(x) && x > 0) l2.push_back(x);
     }
   if (l2.empty()) return 0;
   auto mid = l2.begin() + l2.size() / 2;
   std::nth_element(l2.begin(), mid, l2.end());
   double per_step = 0.25 * double(*mid);  // variance added per step, per direction
   double steps = std::ceil(scale * scale / per_step);
+  if (std::isnan(steps)) return 0;
   return steps > 10000 ? 10000 : std::max(1, int(steps));
 }
 

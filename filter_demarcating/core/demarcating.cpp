@@ -90,9 +90,11 @@ Polylines demarcating_curves(const TriMesh& mesh, const Curvature& c, const Curv
   return opt.min_length > 0 ? drop_short_chains(p, opt.min_length) : p;
 }
 
-double noise_curve_strength(const NoiseEstimate& noise, double presmoothing_edges, CurvatureEstimator estimator) {
-  if (!(noise.relative > kCleanNoise)) return 0;
-  constexpr int n = 100;
+double noise_curve_strength(const NoiseEstimate& noise, double presmoothing_edges, CurvatureEstimator estimator,
+                            int n) {
+  if (!(noise.relative > kCleanNoise) || !std::isfinite(noise.relative) ||
+      !(presmoothing_edges >= 0 && presmoothing_edges <= 100))
+    return 0;
   const TriMesh patch = noise_patch(noise.relative, n);
   ScaledCurvature sc = curvature_at_scale(patch, Length::in_edges(presmoothing_edges), estimator, nullptr);
   const CurvatureGradient g = curvature_gradient(sc.curvature);
@@ -130,7 +132,8 @@ DemarcatingResult compute_demarcating(const TriMesh& mesh, const DemarcatingPara
   Polylines candidates = demarcating_curves(mesh, r.curvature, r.gradient, o);
   for (double x : strengths) r.strongest_crossing = std::max(r.strongest_crossing, x);
   r.automatic_threshold = automatic_curve_threshold(r.median_strength, std::move(strengths));
-  r.noise_threshold = noise_curve_strength(r.noise, r.presmoothing / r.scale.edge, p.estimator) / (r.scale.edge * r.scale.edge);
+  r.noise_threshold = noise_curve_strength(r.noise, r.presmoothing / r.scale.edge, p.estimator,
+                                           noise_patch_cells(mesh.n_faces())) / (r.scale.edge * r.scale.edge);
   r.automatic_threshold = std::max(r.automatic_threshold, r.noise_threshold);
   r.threshold = p.relative_threshold * r.automatic_threshold;
   r.curves = drop_short_chains(keep_strong_segments(candidates, r.threshold), r.min_length);

@@ -86,7 +86,8 @@ struct DemarcatingResult : ScaledCurvature {
 /// The strength that demarcating curves drawn by noise alone reach (kNoiseCurvePercentile of the
 /// crossings on noise_patch at the same pre-smoothing, x kNoiseCurveFactor), in units of
 /// 1/(edge length)^2; 0 on a clean mesh. The automatic threshold is at least this.
-double noise_curve_strength(const NoiseEstimate& noise, double presmoothing_edges, CurvatureEstimator estimator);
+double noise_curve_strength(const NoiseEstimate& noise, double presmoothing_edges, CurvatureEstimator estimator,
+                            int patch_cells = 100);
 
 /// Curvature (with pre-smoothing), curvature gradient, curves above the threshold.
 /// Throws InputError for meshes require_triangles rejects.

@@ -46,9 +46,9 @@ double edge_fit_error(const CurvatureDerivative& C, double k1, double k2, double
   return std::clamp(1 - f * f / kA / norm, 0.0, 1.0);
 }
 
-double noise_tilt(const NoiseEstimate& noise, double presmoothing_edges) {
-  if (!(noise.relative > 0)) return 0;
-  constexpr int n = 100;
+double noise_tilt(const NoiseEstimate& noise, double presmoothing_edges, int n) {
+  if (!(noise.relative > 0) || !std::isfinite(noise.relative) || !(presmoothing_edges >= 0 && presmoothing_edges <= 100))
+    return 0;
   const TriMesh patch = noise_patch(noise.relative, n);
   const ScaledCurvature sc = curvature_at_scale(patch, Length::in_edges(presmoothing_edges), CurvatureEstimator::Jet, nullptr);
   const int margin = 3 + static_cast<int>(std::ceil(2 * presmoothing_edges));
@@ -211,7 +211,7 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
   // noisy scan the noise's crossings outnumber the relief's and pulled the percentile (and with
   // it the threshold, to 1.2 degrees at 1 M faces) down to where the feet and tops of the steps
   // passed as edges.
-  r.noise_angle = noise_tilt(r.noise, r.presmoothing / h);
+  r.noise_angle = noise_tilt(r.noise, r.presmoothing / h, noise_patch_cells(mesh.n_faces()));
   std::vector<double> above_noise;
   for (const auto& sg : all.segments) {
     const double a = 0.5 * (all.strength[sg[0]] + all.strength[sg[1]]);

@@ -80,7 +80,7 @@ constexpr double kNoiseTiltFactor = 2.0;
 
 /// The tilt (radians) that noise of the estimated level leaves after the same pre-smoothing:
 /// kNoiseCurvePercentile of the normals' tilt on noise_patch, x kNoiseTiltFactor.
-double noise_tilt(const NoiseEstimate& noise, double presmoothing_edges);
+double noise_tilt(const NoiseEstimate& noise, double presmoothing_edges, int patch_cells = 100);
 
 /// The fit-error radius and the automatic base scale follow the features' own width (feature_width)
 /// where it spans more than a few triangles: radius at least kFitRadiusWidths x the width, base

@@ -106,3 +106,20 @@ TEST(Repair, NonOrientablePartIsLeftAsItWasAndSaid) {
   EXPECT_EQ(r.mesh.faces, m.faces);
   EXPECT_NE(r.report.summary().find("cannot be oriented coherently"), std::string::npos);
 }
+
+TEST(Repair, FuzzerFindingsAreRefusedWithAMessage) {
+  // tests/fuzz/regressions/repair-face-index-out-of-range: a face refers to a missing vertex.
+  TriMesh bad = rktest::sphere(1, 1);
+  bad.faces.push_back({0, 1, bad.n_vertices()});
+  RepairedMesh r = repair_for_computation(bad);
+  EXPECT_EQ(r.mesh.faces, bad.faces);
+  EXPECT_THROW(compute_demarcating(bad), InputError);
+  // tests/fuzz/regressions/presmoothing-overflow-huge-scale: edges of (almost) no length.
+  TriMesh tiny = rktest::sphere(1e-300, 2);
+  try {
+    compute_demarcating(tiny);
+    ADD_FAILURE() << "a mesh without usable edge length was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no usable edge length"), std::string::npos) << e.what();
+  }
+}

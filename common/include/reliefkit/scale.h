@@ -104,6 +104,10 @@ namespace reliefkit {
 /// (deterministic: fixed seed).
 TriMesh noise_patch(double relative_noise, int n = 100);
 
+/// The noise patch's size for a mesh of `faces` faces: 100 cells (20,000 faces), down to 30 for
+/// meshes smaller than that, so that the simulation never costs more than the mesh itself.
+int noise_patch_cells(long long faces);
+
 /// The value below which the top `1 - q` of `values` lie (0 if empty).
 double percentile(std::vector<double> values, double q);
 
