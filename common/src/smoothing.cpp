@@ -21,7 +21,15 @@ int diffusion_steps(const TriMesh& mesh, double scale) {
   if (l2.empty()) return 0;
   auto mid = l2.begin() + l2.size() / 2;
   std::nth_element(l2.begin(), mid, l2.end());
-  double per_step = 0.25 * double(*mid);  // variance added per step, per direction
+  // Mean squared edge over the edges at most 4x the median length: the mean is what one step
+  // spreads by (it matches a Gaussian to 0.8 % on a grid), the trim keeps a coarse plate or debris
+  // from cutting the number of steps.
+  const double cap = 16 * *mid;
+  double sum = 0;
+  long long n = 0;
+  for (double x : l2)
+    if (x <= cap) sum += x, ++n;
+  double per_step = 0.25 * sum / double(n);  // variance added per step, per direction
   double steps = std::ceil(scale * scale / per_step);
   if (std::isnan(steps)) return 0;
   return steps > 10000 ? 10000 : std::max(1, int(steps));

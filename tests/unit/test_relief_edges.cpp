@@ -69,7 +69,11 @@ TEST(BaseNormals, SphereAndCylinderBasesUnderRelief) {
     std::printf("%s: angle to the true base normal: median %.2f, 99th percentile %.2f deg "
                 "(surface normals: 99th percentile %.2f deg); %d CG iterations\n",
                 shape == 0 ? "sphere  " : "cylinder", mb, pb, ms, b.iterations);
-    EXPECT_LT(mb, 2.0);
+    // Measured: median 0.07 / 0.22 deg, 99th percentile 7.3 / 7.1 deg (surface normals 29 / 39).
+    // Bounds a few times the median and 1.4x the tail: with half the base scale the base follows
+    // the relief and the tail grows past them.
+    EXPECT_LT(mb, shape == 0 ? 0.25 : 0.7);
+    EXPECT_LT(pb, 10.0);
     EXPECT_LT(pb, 0.5 * ms);  // far closer to the base than the surface normals on the relief
   }
 }
