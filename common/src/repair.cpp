@@ -13,14 +13,14 @@ std::string RepairReport::summary() const {
   std::ostringstream s;
   s << "Repaired for the computation (the layer itself is unchanged):";
   const char* sep = " ";
-  auto item = [&](long long n, const char* what) {
-    if (n > 0) s << sep << n << " " << what, sep = "; ";
+  auto item = [&](long long n, const char* one, const char* many) {
+    if (n > 0) s << sep << n << " " << (n == 1 ? one : many), sep = "; ";
   };
-  item(welded_vertices, "coincident vertices welded");
-  item(duplicate_faces, "duplicated faces ignored");
-  item(collapsed_faces, "faces collapsed by welding ignored");
-  item(flipped_faces, "faces flipped to agree with their neighbours");
-  item(reversed_parts, "closed parts turned outside out");
+  item(welded_vertices, "coincident vertex welded", "coincident vertices welded");
+  item(duplicate_faces, "duplicated face ignored", "duplicated faces ignored");
+  item(collapsed_faces, "face collapsed by welding ignored", "faces collapsed by welding ignored");
+  item(flipped_faces, "face flipped to agree with its neighbours", "faces flipped to agree with their neighbours");
+  item(reversed_parts, "closed part turned outside out", "closed parts turned outside out");
   if (conflicting_parts > 0)
     s << sep << conflicting_parts
       << " parts cannot be oriented coherently (Moebius-like; run Filters > Cleaning and Repairing > Re-Orient all "

@@ -46,11 +46,16 @@ BaseNormals estimate_base_normals(const TriMesh& mesh, const std::vector<Vec3>& 
         double s = a.cross(bb).norm();
         double cot = s > 0 ? a.dot(bb) / s : 0;
         if (!std::isfinite(cot) || cot < 0) cot = 0;
-        for (int j = b; j < e; ++j)
-          if (ring.vertex[j] == u) {
-            off[j] += 0.5 * cot;
-            break;
-          }
+        if (e - b > 32) {  // long rings are sorted (vertex_rings): binary search, so a fan stays linear
+          const int* it = std::lower_bound(ring.vertex.data() + b, ring.vertex.data() + e, u);
+          if (it != ring.vertex.data() + e && *it == u) off[it - ring.vertex.data()] += 0.5 * cot;
+        } else {
+          for (int j = b; j < e; ++j)
+            if (ring.vertex[j] == u) {
+              off[j] += 0.5 * cot;
+              break;
+            }
+        }
       }
     }
     double sum = 0;

@@ -124,4 +124,7 @@ TEST(Robustness, HighValenceFanCostsLinearTime) {
   std::printf("fan of 10,000 triangles %.3f s, of 100,000 %.3f s (ratio %.1f; quadratic would be 100)\n", small,
               large, large / small);
   EXPECT_LT(large / small, 30.0);
+  // Relief edges on the 100,000-triangle fan: 0.84 s (3.7 s while the cotangent matrix's pole row was
+  // searched linearly for every face); not a ratio test, since the base-normal solve needs more
+  // iterations on the larger fan (docs/reliability.md).
 }

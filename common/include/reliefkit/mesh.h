@@ -59,7 +59,8 @@ struct VertexFaces {
 };
 VertexFaces vertex_faces(const TriMesh& mesh);
 
-/// Vertex -> neighbouring vertices (one ring, each neighbour once), CSR.
+/// Vertex -> neighbouring vertices (one ring, each neighbour once), CSR. The ring of a vertex with
+/// more than 16 faces is sorted by vertex index (shorter rings are in face order).
 struct VertexRing {
   std::vector<int> offset;
   std::vector<int> vertex;
