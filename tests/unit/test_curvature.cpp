@@ -145,22 +145,20 @@ TEST(Curvature, MongePatchTensorRegularGrid) {
   EXPECT_NEAR(c.k1[o], -mc.p, 0.01);
   EXPECT_NEAR(c.k2[o], -mc.q, 0.01);
   EXPECT_GT(std::abs(c.dir1[o].x()), 0.99);
-  double ref = std::max({std::abs(mc.A), std::abs(mc.B), std::abs(mc.C), std::abs(mc.D)});
-  EXPECT_NEAR(t.a, -mc.A, 0.05 * std::abs(mc.A));
-  EXPECT_NEAR(t.b, -mc.B, 0.05 * std::abs(mc.B));
-  EXPECT_NEAR(t.c, -mc.C, 0.05 * std::abs(mc.C));
-  EXPECT_NEAR(t.d, -mc.D, 0.05 * std::abs(mc.D));
-  (void)ref;
+  const double rel = std::max({std::abs(t.a + mc.A) / std::abs(mc.A), std::abs(t.b + mc.B) / std::abs(mc.B),
+                               std::abs(t.c + mc.C) / std::abs(mc.C), std::abs(t.d + mc.D) / std::abs(mc.D)});
+  std::printf("Monge tensor, regular grid: largest relative error of a..d %.2e\n", rel);
+  EXPECT_LT(rel, 1e-4);  // measured 2.0e-5 (was a 5 % tolerance)
 }
 
 TEST(Curvature, MongePatchTensorJittered) {
   MongeCase mc;
   for (uint32_t seed : {1u, 2u, 3u}) {
     CurvatureDerivative t = monge_estimate(100, 0.5, seed);
-    EXPECT_NEAR(t.a, -mc.A, 0.10 * std::abs(mc.A)) << "seed " << seed;
-    EXPECT_NEAR(t.b, -mc.B, 0.10 * std::abs(mc.B)) << "seed " << seed;
-    EXPECT_NEAR(t.c, -mc.C, 0.10 * std::abs(mc.C)) << "seed " << seed;
-    EXPECT_NEAR(t.d, -mc.D, 0.10 * std::abs(mc.D)) << "seed " << seed;
+    const double rel = std::max({std::abs(t.a + mc.A) / std::abs(mc.A), std::abs(t.b + mc.B) / std::abs(mc.B),
+                                 std::abs(t.c + mc.C) / std::abs(mc.C), std::abs(t.d + mc.D) / std::abs(mc.D)});
+    std::printf("Monge tensor, jittered (seed %u): largest relative error of a..d %.2e\n", seed, rel);
+    EXPECT_LT(rel, 1e-3) << "seed " << seed;  // measured 0.8-3.6e-4 (was 10 %)
   }
 }
 
@@ -179,7 +177,8 @@ TEST(Curvature, MongePatchTensorWithQuarticTermsJittered) {
     worst.push_back(std::max({std::abs(t.a + mc.A) / std::abs(mc.A), std::abs(t.b + mc.B) / std::abs(mc.B),
                               std::abs(t.c + mc.C) / std::abs(mc.C), std::abs(t.d + mc.D) / std::abs(mc.D)}));
   }
-  EXPECT_LT(median(worst), 0.10);
+  std::printf("Monge tensor with quartic terms, jittered: median of the largest relative error %.2e\n", median(worst));
+  EXPECT_LT(median(worst), 0.10);  // measured 0.066: the quartic terms the cubic fit cannot follow
 }
 
 TEST(Curvature, BoundaryVerticesOfAnOpenCylinder) {
