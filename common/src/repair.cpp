@@ -85,58 +85,81 @@ RepairedMesh repair_for_computation(const TriMesh& in) {
     faces.push_back(g);
   }
   {
-    std::vector<std::pair<std::array<int, 3>, int>> keyed(faces.size());
-    for (size_t i = 0; i < faces.size(); ++i) {
-      auto k = faces[i];
-      std::sort(k.begin(), k.end());
-      keyed[i] = {k, static_cast<int>(i)};
-    }
-    std::sort(keyed.begin(), keyed.end());
+    // Duplicates share all three vertices: look among the faces of the face's vertex of least
+    // valence (no global sort; linear in the faces even around a vertex of very high valence).
+    TriMesh tmp;
+    tmp.faces = faces;
+    tmp.vertices.resize(out.mesh.vertices.size());
+    const VertexFaces vf = vertex_faces(tmp);
+    auto deg = [&](int v) { return vf.offset[v + 1] - vf.offset[v]; };
+    const int nff = static_cast<int>(faces.size());
     std::vector<char> drop(faces.size(), 0);
-    for (size_t i = 1; i < keyed.size(); ++i)
-      if (keyed[i].first == keyed[i - 1].first && keyed[i].first[0] != keyed[i].first[1]) {
-        drop[keyed[i].second] = 1;
-        ++rep.duplicate_faces;
+#pragma omp parallel for schedule(dynamic, 4096)
+    for (int i = 0; i < nff; ++i) {
+      const auto& t = faces[i];
+      if (t[0] < 0 || t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+      int c = t[0];
+      for (int v : t)
+        if (deg(v) < deg(c)) c = v;
+      auto key = t;
+      std::sort(key.begin(), key.end());
+      for (int k = vf.offset[c]; k < vf.offset[c + 1]; ++k) {
+        const int g = vf.face[k];
+        if (g >= i) continue;  // an earlier face on the same vertices makes this one a duplicate
+        auto kg = faces[g];
+        std::sort(kg.begin(), kg.end());
+        if (kg == key) {
+          drop[i] = 1;
+          break;
+        }
       }
-    for (size_t i = 0; i < faces.size(); ++i)
-      if (!drop[i]) out.mesh.faces.push_back(faces[i]);
+    }
+    for (size_t i = 0; i < faces.size(); ++i) {
+      if (drop[i])
+        ++rep.duplicate_faces;
+      else
+        out.mesh.faces.push_back(faces[i]);
+    }
   }
 
-  // 3. Coherent orientation per part: breadth-first over manifold edges (exactly two faces).
+  // 3. Coherent orientation per part: breadth-first over manifold edges (exactly two faces). The
+  // face across an edge is found among the faces of the edge's end of least valence.
   const int nf = out.mesh.n_faces();
-  const int nrv = out.mesh.n_vertices();
-  struct HalfEdge {
-    int a, b, face;  // a < b; `face` traverses it from a to b when forward
-    bool forward;
-  };
-  std::vector<HalfEdge> he;
-  he.reserve(size_t(nf) * 3);
+  const VertexFaces vf = vertex_faces(out.mesh);
+  auto deg = [&](int v) { return vf.offset[v + 1] - vf.offset[v]; };
+  // Per face and side: the neighbour across it (-1: boundary or non-manifold) and whether the two
+  // traverse the edge in the same direction (then one of them must be flipped).
+  std::vector<std::array<int, 3>> across(nf, {-1, -1, -1});
+  std::vector<std::array<char, 3>> same_dir(nf, {0, 0, 0});
+  std::vector<char> closed_edge_ok(nf, 1);  // every edge of the face has exactly two faces
+#pragma omp parallel for schedule(dynamic, 4096)
   for (int f = 0; f < nf; ++f) {
     const auto& t = out.mesh.faces[f];
-    if (t[0] < 0 || t[0] >= nrv || t[1] < 0 || t[1] >= nrv || t[2] < 0 || t[2] >= nrv) continue;
     for (int j = 0; j < 3; ++j) {
-      int a = t[j], b = t[(j + 1) % 3];
-      if (a == b) continue;
-      he.push_back({std::min(a, b), std::max(a, b), f, a < b});
+      const int a = t[j], b = t[(j + 1) % 3];
+      if (a == b) {
+        closed_edge_ok[f] = 0;
+        continue;
+      }
+      const int c = deg(a) <= deg(b) ? a : b;
+      int found = -1, count = 0;
+      char same = 0;
+      for (int k = vf.offset[c]; k < vf.offset[c + 1]; ++k) {
+        const int g = vf.face[k];
+        if (g == f) continue;
+        const auto& u = out.mesh.faces[g];
+        for (int i = 0; i < 3; ++i) {
+          if (u[i] == a && u[(i + 1) % 3] == b) ++count, found = g, same = 1;
+          if (u[i] == b && u[(i + 1) % 3] == a) ++count, found = g, same = 0;
+        }
+      }
+      if (count == 1) {
+        across[f][j] = found;
+        same_dir[f][j] = same;
+      } else {
+        closed_edge_ok[f] = 0;
+      }
     }
-  }
-  std::sort(he.begin(), he.end(), [](const HalfEdge& x, const HalfEdge& y) {
-    return std::tie(x.a, x.b, x.face) < std::tie(y.a, y.b, y.face);
-  });
-  // Adjacency: for each manifold edge, the two faces and whether they agree as they are.
-  std::vector<std::vector<std::pair<int, bool>>> adj(nf);  // neighbour, "same direction" (= inconsistent)
-  std::vector<char> closed_edge_ok(nf, 1);                 // every edge of the face has two faces
-  for (size_t i = 0; i < he.size();) {
-    size_t j = i;
-    while (j < he.size() && he[j].a == he[i].a && he[j].b == he[i].b) ++j;
-    if (j - i == 2) {
-      const bool same = he[i].forward == he[i + 1].forward;  // both traverse a->b: inconsistent
-      adj[he[i].face].push_back({he[i + 1].face, same});
-      adj[he[i + 1].face].push_back({he[i].face, same});
-    } else {
-      for (size_t k = i; k < j; ++k) closed_edge_ok[he[k].face] = 0;
-    }
-    i = j;
   }
   std::vector<signed char> flip(nf, -1);
   std::vector<int> queue, part;
@@ -150,8 +173,10 @@ RepairedMesh repair_for_computation(const TriMesh& in) {
       const int f = queue[q];
       part.push_back(f);
       closed = closed && closed_edge_ok[f];
-      for (const auto& [g, same] : adj[f]) {
-        const signed char want = static_cast<signed char>(flip[f] ^ (same ? 1 : 0));
+      for (int j = 0; j < 3; ++j) {
+        const int g = across[f][j];
+        if (g < 0) continue;
+        const signed char want = static_cast<signed char>(flip[f] ^ (same_dir[f][j] ? 1 : 0));
         if (flip[g] < 0) {
           flip[g] = want;
           queue.push_back(g);
