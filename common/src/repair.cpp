@@ -1,6 +1,8 @@
 #include "reliefkit/repair.h"
 
 #include <algorithm>
+#include <cstring>
+#include <cstdint>
 #include <array>
 #include <numeric>
 #include <sstream>
@@ -31,73 +33,95 @@ std::string RepairReport::summary() const {
 
 RepairedMesh repair_for_computation(const TriMesh& in) {
   RepairedMesh out;
-  RepairReport& rep = out.report;
-  const int nv = in.n_vertices();
-  // A face referring to a missing vertex is not repairable here: return the mesh as it is, for
+  out.mesh = in;
+  out.report = repair_in_place(out.mesh, &out.of_input);
+  return out;
+}
+
+RepairReport repair_in_place(TriMesh& mesh, std::vector<int>* of_input) {
+  RepairReport rep;
+  const int nv = mesh.n_vertices();
+  if (of_input) {
+    of_input->resize(nv);
+    std::iota(of_input->begin(), of_input->end(), 0);
+  }
+  // A face referring to a missing vertex is not repairable here: the mesh stays as it is, for
   // require_triangles() to refuse with its message.
-  for (const auto& f : in.faces)
+  for (const auto& f : mesh.faces)
     for (int v : f)
-      if (v < 0 || v >= nv) {
-        out.mesh = in;
-        out.of_input.resize(nv);
-        std::iota(out.of_input.begin(), out.of_input.end(), 0);
-        return out;
-      }
+      if (v < 0 || v >= nv) return rep;
 
-  // 1. Weld vertices at exactly the same position (sort by coordinates).
-  std::vector<int> order(nv);
-  std::iota(order.begin(), order.end(), 0);
-  auto less = [&](int a, int b) {
-    const Vec3 &p = in.vertices[a], &q = in.vertices[b];
-    return std::tie(p.x(), p.y(), p.z(), a) < std::tie(q.x(), q.y(), q.z(), b);
-  };
-  std::sort(order.begin(), order.end(), less);
-  out.of_input.assign(nv, -1);
-  for (int i = 0; i < nv; ++i) {
-    const int v = order[i];
-    if (i > 0 && in.vertices[v] == in.vertices[order[i - 1]] && in.vertices[v].allFinite()) {
-      out.of_input[v] = out.of_input[order[i - 1]];
-      ++rep.welded_vertices;
-    } else {
-      out.of_input[v] = static_cast<int>(out.mesh.vertices.size());
-      out.mesh.vertices.push_back(in.vertices[v]);
-    }
-  }
-  // Keep the repaired vertices in input order where nothing was welded (stable results).
-  if (rep.welded_vertices == 0) {
-    out.mesh.vertices = in.vertices;
-    std::iota(out.of_input.begin(), out.of_input.end(), 0);
-  }
-
-  // 2. Faces on the welded vertices; drop collapsed and duplicated ones.
-  std::vector<std::array<int, 3>> faces;
-  faces.reserve(in.faces.size());
-  for (const auto& f : in.faces) {
-    if (f[0] < 0 || f[1] < 0 || f[2] < 0 || f[0] >= nv || f[1] >= nv || f[2] >= nv) {
-      faces.push_back(f);  // left for require_triangles() to refuse
-      continue;
-    }
-    std::array<int, 3> g{out.of_input[f[0]], out.of_input[f[1]], out.of_input[f[2]]};
-    if (rep.welded_vertices > 0 && (g[0] == g[1] || g[1] == g[2] || g[0] == g[2])) {
-      ++rep.collapsed_faces;
-      continue;
-    }
-    faces.push_back(g);
-  }
+  // 1. Weld vertices at exactly the same position. Vertices are sorted by a 64-bit hash of their
+  // exact coordinates (computed in parallel; a direct sort of integer pairs, not an indirect one on
+  // coordinates); equal hashes are then told apart by their coordinates.
   {
-    // Duplicates share all three vertices: look among the faces of the face's vertex of least
-    // valence (no global sort; linear in the faces even around a vertex of very high valence).
-    TriMesh tmp;
-    tmp.faces = faces;
-    tmp.vertices.resize(out.mesh.vertices.size());
-    const VertexFaces vf = vertex_faces(tmp);
-    auto deg = [&](int v) { return vf.offset[v + 1] - vf.offset[v]; };
-    const int nff = static_cast<int>(faces.size());
-    std::vector<char> drop(faces.size(), 0);
-#pragma omp parallel for schedule(dynamic, 4096)
-    for (int i = 0; i < nff; ++i) {
-      const auto& t = faces[i];
-      if (t[0] < 0 || t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+    std::vector<std::pair<uint64_t, int>> keyed(nv);
+#pragma omp parallel for schedule(static)
+    for (int v = 0; v < nv; ++v) {
+      uint64_t h = 1469598103934665603ull;
+      for (int k = 0; k < 3; ++k) {
+        double x = mesh.vertices[v][k];
+        if (x == 0) x = 0;  // -0 and +0 are the same position
+        uint64_t bits;
+        std::memcpy(&bits, &x, sizeof bits);
+        h = (h ^ bits) * 1099511628211ull;
+        h ^= h >> 29;
+      }
+      keyed[v] = {h, v};
+    }
+    std::sort(keyed.begin(), keyed.end());
+    std::vector<int> rep_of(nv, -1);  // the first input vertex at each position
+    for (int i = 0; i < nv;) {
+      int j = i;
+      while (j < nv && keyed[j].first == keyed[i].first) ++j;
+      for (int k = i; k < j; ++k) {  // a run of equal hashes: almost always one vertex
+        const int v = keyed[k].second;
+        if (!mesh.vertices[v].allFinite()) continue;
+        for (int l = i; l < k; ++l) {
+          const int u = keyed[l].second;
+          if (rep_of[u] == u && mesh.vertices[u] == mesh.vertices[v]) {
+            rep_of[v] = u;
+            ++rep.welded_vertices;
+            break;
+          }
+        }
+        if (rep_of[v] < 0) rep_of[v] = v;
+      }
+      i = j;
+    }
+    if (rep.welded_vertices > 0) {
+      std::vector<int> index(nv, -1);
+      int kept = 0;
+      for (int v = 0; v < nv; ++v)
+        if (rep_of[v] < 0 || rep_of[v] == v) {
+          index[v] = kept;
+          mesh.vertices[kept++] = mesh.vertices[v];
+        }
+      for (int v = 0; v < nv; ++v)
+        if (index[v] < 0) index[v] = index[rep_of[v]];
+      mesh.vertices.resize(kept);
+      for (auto& f : mesh.faces)
+        for (int& v : f) v = index[v];
+      if (of_input) *of_input = std::move(index);
+    }
+  }
+
+  // 2. Drop faces collapsed by welding and duplicated faces. Duplicates share all three vertices:
+  // they are looked for among the faces of the face's vertex of least valence (no global sort;
+  // linear in the faces even around a vertex of very high valence).
+  VertexFaces vf = vertex_faces(mesh);
+  auto deg = [&](int v) { return vf.offset[v + 1] - vf.offset[v]; };
+  {
+    const int nf0 = mesh.n_faces();
+    std::vector<char> drop(nf0, 0);
+    long long collapsed = 0, duplicates = 0;
+#pragma omp parallel for schedule(dynamic, 4096) reduction(+ : collapsed, duplicates)
+    for (int i = 0; i < nf0; ++i) {
+      const auto& t = mesh.faces[i];
+      if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+        if (rep.welded_vertices > 0) drop[i] = 1, ++collapsed;  // input degeneracies stay (counted later)
+        continue;
+      }
       int c = t[0];
       for (int v : t)
         if (deg(v) < deg(c)) c = v;
@@ -106,27 +130,28 @@ RepairedMesh repair_for_computation(const TriMesh& in) {
       for (int k = vf.offset[c]; k < vf.offset[c + 1]; ++k) {
         const int g = vf.face[k];
         if (g >= i) continue;  // an earlier face on the same vertices makes this one a duplicate
-        auto kg = faces[g];
+        auto kg = mesh.faces[g];
         std::sort(kg.begin(), kg.end());
         if (kg == key) {
-          drop[i] = 1;
+          drop[i] = 1, ++duplicates;
           break;
         }
       }
     }
-    for (size_t i = 0; i < faces.size(); ++i) {
-      if (drop[i])
-        ++rep.duplicate_faces;
-      else
-        out.mesh.faces.push_back(faces[i]);
+    rep.collapsed_faces = collapsed;
+    rep.duplicate_faces = duplicates;
+    if (collapsed + duplicates > 0) {
+      size_t kept = 0;
+      for (int i = 0; i < nf0; ++i)
+        if (!drop[i]) mesh.faces[kept++] = mesh.faces[i];
+      mesh.faces.resize(kept);
+      vf = vertex_faces(mesh);
     }
   }
 
   // 3. Coherent orientation per part: breadth-first over manifold edges (exactly two faces). The
   // face across an edge is found among the faces of the edge's end of least valence.
-  const int nf = out.mesh.n_faces();
-  const VertexFaces vf = vertex_faces(out.mesh);
-  auto deg = [&](int v) { return vf.offset[v + 1] - vf.offset[v]; };
+  const int nf = mesh.n_faces();
   // Per face and side: the neighbour across it (-1: boundary or non-manifold) and whether the two
   // traverse the edge in the same direction (then one of them must be flipped).
   std::vector<std::array<int, 3>> across(nf, {-1, -1, -1});
@@ -134,7 +159,7 @@ RepairedMesh repair_for_computation(const TriMesh& in) {
   std::vector<char> closed_edge_ok(nf, 1);  // every edge of the face has exactly two faces
 #pragma omp parallel for schedule(dynamic, 4096)
   for (int f = 0; f < nf; ++f) {
-    const auto& t = out.mesh.faces[f];
+    const auto& t = mesh.faces[f];
     for (int j = 0; j < 3; ++j) {
       const int a = t[j], b = t[(j + 1) % 3];
       if (a == b) {
@@ -147,7 +172,7 @@ RepairedMesh repair_for_computation(const TriMesh& in) {
       for (int k = vf.offset[c]; k < vf.offset[c + 1]; ++k) {
         const int g = vf.face[k];
         if (g == f) continue;
-        const auto& u = out.mesh.faces[g];
+        const auto& u = mesh.faces[g];
         for (int i = 0; i < 3; ++i) {
           if (u[i] == a && u[(i + 1) % 3] == b) ++count, found = g, same = 1;
           if (u[i] == b && u[(i + 1) % 3] == a) ++count, found = g, same = 0;
@@ -200,8 +225,8 @@ RepairedMesh repair_for_computation(const TriMesh& in) {
     if (closed) {  // a closed part: normals outwards (positive signed volume)
       double vol = 0;
       for (int f : part) {
-        const auto& t = out.mesh.faces[f];
-        double v6 = out.mesh.vertices[t[0]].dot(out.mesh.vertices[t[1]].cross(out.mesh.vertices[t[2]]));
+        const auto& t = mesh.faces[f];
+        double v6 = mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
         vol += flip[f] ? -v6 : v6;
       }
       if (vol < 0) {
@@ -210,9 +235,9 @@ RepairedMesh repair_for_computation(const TriMesh& in) {
       }
     }
     for (int f : part)
-      if (flip[f]) std::swap(out.mesh.faces[f][1], out.mesh.faces[f][2]);
+      if (flip[f]) std::swap(mesh.faces[f][1], mesh.faces[f][2]);
   }
-  return out;
+  return rep;
 }
 
 }  // namespace reliefkit

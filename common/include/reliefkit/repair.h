@@ -40,4 +40,8 @@ struct RepairedMesh {
 /// left to require_triangles() to refuse.
 RepairedMesh repair_for_computation(const TriMesh& mesh);
 
+/// The same on the mesh itself (no copy: what the MeshLab adapter uses on its own copy of the
+/// layer). `of_input` (optional) receives the input-vertex -> repaired-vertex map.
+RepairReport repair_in_place(TriMesh& mesh, std::vector<int>* of_input);
+
 }  // namespace reliefkit

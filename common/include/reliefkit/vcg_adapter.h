@@ -29,24 +29,23 @@ void for_each_vertex(const VcgView<MeshT>& view, F f) {
   for (const auto& [i, v] : view.also) f(i, v);
 }
 
-/// Replaces the view's mesh by repair_for_computation() of it (welded, deduplicated, coherently
-/// oriented) and re-maps the vcg vertices.
+/// Repairs the view's mesh in place (repair_in_place: welded, deduplicated, coherently oriented)
+/// and re-maps the vcg vertices.
 template <class MeshT>
 void repair_view(VcgView<MeshT>& view) {
-  RepairedMesh r = repair_for_computation(view.mesh);
-  view.repair = r.report;
-  if (!r.report.changed()) return;
-  std::vector<typename MeshT::VertexPointer> first(r.mesh.vertices.size(), nullptr);
+  std::vector<int> of_input;
+  view.repair = repair_in_place(view.mesh, &of_input);
+  if (view.repair.welded_vertices == 0) return;  // the vertices are the view's own, in order
+  std::vector<typename MeshT::VertexPointer> first(view.mesh.vertices.size(), nullptr);
   view.also.clear();
   for (size_t i = 0; i < view.vertex_of.size(); ++i) {
-    const int j = r.of_input[i];
+    const int j = of_input[i];
     if (first[j] == nullptr)
       first[j] = view.vertex_of[i];
     else
       view.also.push_back({j, view.vertex_of[i]});
   }
   view.vertex_of.swap(first);
-  view.mesh = std::move(r.mesh);
 }
 
 template <class MeshT>
