@@ -42,6 +42,26 @@ void emboss_cylinder(Relief& r, double R, const Height& height) {
   }
 }
 
+// Displaces the unit sphere's vertices along their normal by height(angle from +z); records the
+// base normals.
+template <class Height>
+void emboss_sphere(Relief& r, const Height& height) {
+  for (auto& p : r.mesh.vertices) {
+    Vec3 n = p.normalized();
+    r.base_normal.push_back(n);
+    p = n * (1 + height(std::acos(std::clamp(n.z(), -1.0, 1.0))));
+  }
+}
+
+// The true step line at angular radius a0 on the unit sphere (mid-height of the step), 4000 samples.
+void sample_circle_on_sphere(Relief& r, double a0, double height) {
+  for (int k = 0; k < 4000; ++k) {
+    double a = 2 * M_PI * k / 4000;
+    Vec3 n(std::sin(a0) * std::cos(a), std::sin(a0) * std::sin(a), std::cos(a0));
+    r.boundary.push_back(n * (1 + 0.5 * height));
+  }
+}
+
 }  // namespace
 
 Relief disc_on_plane(const ReliefShape& s, int n) {
@@ -62,17 +82,8 @@ Relief disc_on_sphere(const ReliefShape& s, int levels) {
   const double a0 = 0.5;
   Relief r;
   r.mesh = sphere(1.0, levels, s.jitter, s.seed);
-  for (auto& p : r.mesh.vertices) {
-    Vec3 n = p.normalized();
-    double ang = std::acos(std::clamp(n.z(), -1.0, 1.0));
-    r.base_normal.push_back(n);
-    p = n * (1 + s.height * step(a0 - ang, s.width));
-  }
-  for (int k = 0; k < 4000; ++k) {
-    double a = 2 * M_PI * k / 4000;
-    Vec3 n(std::sin(a0) * std::cos(a), std::sin(a0) * std::sin(a), std::cos(a0));
-    r.boundary.push_back(n * (1 + 0.5 * s.height));
-  }
+  emboss_sphere(r, [&](double ang) { return s.height * step(a0 - ang, s.width); });
+  sample_circle_on_sphere(r, a0, s.height);
   finish(r, s);
   return r;
 }
@@ -81,18 +92,8 @@ Relief ring_on_sphere(const ReliefShape& s, int levels) {
   const double a_in = 0.3, a_out = 0.6;  // angular radii of the ring's inner and outer edges
   Relief r;
   r.mesh = sphere(1.0, levels, s.jitter, s.seed);
-  for (auto& p : r.mesh.vertices) {
-    Vec3 n = p.normalized();
-    double ang = std::acos(std::clamp(n.z(), -1.0, 1.0));
-    r.base_normal.push_back(n);
-    p = n * (1 + s.height * step(a_out - ang, s.width) * step(ang - a_in, s.width));
-  }
-  for (double a0 : {a_in, a_out})
-    for (int k = 0; k < 4000; ++k) {
-      double a = 2 * M_PI * k / 4000;
-      Vec3 n(std::sin(a0) * std::cos(a), std::sin(a0) * std::sin(a), std::cos(a0));
-      r.boundary.push_back(n * (1 + 0.5 * s.height));
-    }
+  emboss_sphere(r, [&](double ang) { return s.height * step(a_out - ang, s.width) * step(ang - a_in, s.width); });
+  for (double a0 : {a_in, a_out}) sample_circle_on_sphere(r, a0, s.height);
   finish(r, s);
   return r;
 }
