@@ -4,6 +4,7 @@
 # peak memory of the whole process (load + filter, no save), next to a baseline process that only
 # loads the mesh and runs MeshLab's "Select None". Figures for docs/reliability.md.
 #   bench/meshlab_filters.sh [faces ...]      (default: 1000000 10000000)
+#   RELIEFKIT_BENCH_FILTERS="baseline relief_edges" bench/meshlab_filters.sh ...   (a subset)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 work="${RELIEFKIT_BENCH_DIR:-$here/build/bench-meshlab}"; mkdir -p "$work"
@@ -30,7 +31,7 @@ printf "%-10s %-14s %10s %10s\n" faces filter "wall s" "peak MiB"
 for n in "${sizes[@]}"; do
   mesh="$work/relief$n.ply"
   [ -f "$mesh" ] || "$here/build/tests/rk_make_mesh" relief-torus "$n" "$mesh" >/dev/null
-  for f in baseline curvature demarcating shading relief_edges base_normals ridges; do
+  for f in ${RELIEFKIT_BENCH_FILTERS:-baseline curvature demarcating shading relief_edges base_normals ridges}; do
     echo "${S[$f]}" > "$work/$f.mlx"
     /usr/bin/time -f "%e %M" -o "$work/time.txt" "$here/scripts/meshlabserver" -i "$mesh" -s "$work/$f.mlx" \
       >"$work/$f-$n.log" 2>&1 || echo "($f failed: see $work/$f-$n.log)"

@@ -37,7 +37,7 @@ const char* kBaseInfo =
     "<b>Output</b>: per-vertex attribute <code>base_normal</code> (Point3); optionally vertex quality = "
     "angle in degrees between the surface normal and the base normal (large on the flanks of the relief).<br><br>"
     "Method: one implicit heat-diffusion step of the normals (Gaussian scale = the parameter), solved by "
-    "conjugate gradients; thesis section 4.4 (M. Kolomenkin, I. Shimshoni, A. Tal, CVPR 2009).";
+    "Eigen's conjugate gradients, or CHOLMOD's Cholesky factorization for wide scales; thesis section 4.4 (M. Kolomenkin, I. Shimshoni, A. Tal, CVPR 2009).";
 
 const char* kRidgeInfo =
     "Draws <b>ridges</b> (where the surface is most sharply convex across a crest) and <b>valleys</b> "
@@ -49,13 +49,13 @@ const char* kRidgeInfo =
     "from the curvature-derivative tensor; Y. Ohtake, A. Belyaev, H.-P. Seidel, <b>\"Ridge-valley lines on "
     "meshes via implicit surface fitting\"</b>, SIGGRAPH 2004; thesis sections 3.4 and 5.5.1.";
 
-// Iterative solves that stop at their limit say so, with the residual and what to change.
+// Solves that do not reach their tolerance say so, with the solver, the residual and what to change.
 void log_unconverged(FilterCall& call, const BaseNormals& b, double scale, double edge) {
-  call.log(QString("Warning: the base-normal solve stopped at its limit of %1 conjugate-gradient iterations with a "
-                   "relative residual of %2 (asked: 0.001); the base surface is then less smooth than the base scale "
-                   "(%3 edge lengths) asks for. The result is kept; a smaller \"Base surface scale\" converges faster.")
-               .arg(b.iterations)
-               .arg(b.residual, 0, 'g', 2)
+  call.log(QString("Warning: the base-normal solve did not reach its tolerance (%1; asked: residual 0.001)%2. The "
+                   "base surface is then less smooth than the base scale (%3 edge lengths) asks for. The result is "
+                   "kept; a smaller \"Base surface scale\" converges faster.")
+               .arg(QString::fromStdString(b.solve.summary()))
+               .arg(b.solve.note.empty() ? QString() : QString(": ") + QString::fromStdString(b.solve.note))
                .arg(edge > 0 ? scale / edge : 0.0, 0, 'f', 1));
 }
 
@@ -142,17 +142,16 @@ void apply_relief(FilterCall& call) {
                .arg(r.links));
   call.log(scale_summary(r.scale, r.noise, r.presmoothing, p.presmoothing));
   call.log(QString("Direction window %1 deg; hysteresis: strong = error <= %2 and tilt >= %3 deg, weak = error <= "
-                   "%4 and tilt >= %5 deg (automatic: %10 deg from the crossings, %11 deg from the noise); base scale "
-                   "%6 (%7 CG iterations, residual %9), edge smoothing %8.")
+                   "%4 and tilt >= %5 deg (automatic: %9 deg from the crossings, %10 deg from the noise); base scale "
+                   "%6 (solved by %7), edge smoothing %8.")
                .arg(r.window / kDeg, 0, 'f', 1)
                .arg(p.strong_error, 0, 'g', 3)
                .arg(r.strong_angle / kDeg, 0, 'f', 1)
                .arg(p.weak_error, 0, 'g', 3)
                .arg(r.weak_angle / kDeg, 0, 'f', 1)
                .arg(r.base_scale, 0, 'g', 4)
-               .arg(r.base.iterations)
+               .arg(QString::fromStdString(r.base.solve.summary()))
                .arg(r.edge_smoothing, 0, 'g', 4)
-               .arg(r.base.residual, 0, 'g', 2)
                .arg(r.automatic_angle / kDeg, 0, 'f', 1)
                .arg(r.noise_angle / kDeg, 0, 'f', 1));
   if (r.edges.segments.empty())
@@ -161,7 +160,7 @@ void apply_relief(FilterCall& call) {
                      "\"Steepness, strong edges\" below it, or raise \"Model error, strong edges\".")
                  .arg(r.steepest_crossing / kDeg, 0, 'f', 1)
                  .arg(r.strong_angle / kDeg, 0, 'f', 1));
-  if (!r.base.converged) log_unconverged(call, r.base, r.base_scale, r.scale.edge);
+  if (!r.base.solve.converged) log_unconverged(call, r.base, r.base_scale, r.scale.edge);
 }
 
 void base_parameters(MeshModel&, RichParameterList& par) {
@@ -191,13 +190,11 @@ void apply_base(FilterCall& call) {
     });
   }
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (!b.converged) log_unconverged(call, b, o.scale, ms.edge);
-  call.log(QString("Base normals of %1 vertices at scale %2 (%6 edge lengths): %3 conjugate-gradient iterations "
-                   "(residual %4), %5 s.")
+  if (!b.solve.converged) log_unconverged(call, b, o.scale, ms.edge);
+  call.log(QString("Base normals of %1 vertices at scale %2 (%5 edge lengths), solved by %3; %4 s.")
                .arg(thousands(view.mesh.n_vertices()))
                .arg(o.scale, 0, 'g', 4)
-               .arg(b.iterations)
-               .arg(b.residual, 0, 'g', 2)
+               .arg(QString::fromStdString(b.solve.summary()))
                .arg(secs, 0, 'f', 3)
                .arg(ms.edge > 0 ? o.scale / ms.edge : 0.0, 0, 'f', 1));
 }

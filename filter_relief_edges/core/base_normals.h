@@ -5,28 +5,32 @@
 // by one implicit (backward Euler) heat step, (M + t K) X = M N with t = scale^2 / 2 — the
 // heat kernel's spread at that time is a Gaussian of standard deviation `scale` — where M holds
 // the mixed Voronoi areas and K the cotangent stiffness (negative cotangent weights clamped to
-// zero, which keeps the system an M-matrix on poor triangulations). The system is solved for the
-// three coordinates at once by conjugate gradients with a diagonal preconditioner, in parallel.
+// zero, which keeps the system an M-matrix on poor triangulations). The system is solved by the
+// shared solver (reliefkit/solvers.h): Eigen's conjugate gradients started from the surface
+// normals, or CHOLMOD's Cholesky factorization when the scale is so many edges wide that conjugate
+// gradients would need more time than the factorization (measured crossover: about 50 edges at
+// 1 M faces; docs/reliability.md), each falling back to the other when it fails.
 // Diffusing over the surface (not in space) keeps the two sides of a thin object apart.
 #pragma once
 
 #include "reliefkit/mesh.h"
 #include "reliefkit/scale.h"
+#include "reliefkit/solvers.h"
 
 namespace reliefkit {
 
 struct BaseNormalOptions {
   double scale = 0;          // Gaussian scale in mesh units (required, > 0)
-  int max_iterations = 500;
-  double tolerance = 1e-3;   // relative residual of the conjugate-gradient solve
+  int max_iterations = 1000;  // conjugate-gradient limit (per coordinate)
+  double tolerance = 1e-3;    // relative residual asked of the solve
+  SolverMethod method = SolverMethod::Auto;
   Progress progress = nullptr;
 };
 
 struct BaseNormals {
   std::vector<Vec3> normal;  // #V unit base normals
-  int iterations = 0;        // conjugate-gradient iterations used
-  double residual = 0;       // final relative residual
-  bool converged = true;     // residual <= tolerance (else stopped at max_iterations)
+  SolveReport solve;         // which solver, iterations, the residual measured on the result
+  double expected_iterations = 0;  // conjugate-gradient iterations predicted from the conditioning
 };
 
 /// Base normals from the surface normals (one per vertex, e.g. Curvature::normal).

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <array>
+#include <limits>
 #include <map>
 
 namespace rktest {
@@ -151,6 +153,63 @@ TriMesh relief_torus(long faces) {
     p = c + d * (1 + 0.05 * std::sin(12 * u) * std::sin(6 * v));
   }
   return m;
+}
+
+namespace {
+// Closest point of triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5).
+Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  const double denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+}  // namespace
+
+std::vector<double> distance_to_surface(const TriMesh& mesh, const std::vector<Vec3>& points, double reach) {
+  double cell = reach;
+  for (const auto& f : mesh.faces)
+    for (int j = 0; j < 3; ++j)
+      cell = std::max(cell, (mesh.vertices[f[j]] - mesh.vertices[f[(j + 1) % 3]]).norm());
+  Vec3 lo = mesh.vertices[0];
+  for (const auto& p : mesh.vertices) lo = lo.cwiseMin(p);
+  auto key = [&](const Vec3& p) {
+    const Eigen::Array3d q = ((p - lo) / cell).array().floor();
+    return std::array<long, 3>{long(q[0]), long(q[1]), long(q[2])};
+  };
+  std::map<std::array<long, 3>, std::vector<int>> grid;  // faces by the cell of their first corner
+  for (int f = 0; f < mesh.n_faces(); ++f) grid[key(mesh.vertices[mesh.faces[f][0]])].push_back(f);
+  std::vector<double> out;
+  for (const Vec3& p : points) {
+    const auto k = key(p);
+    double best = std::numeric_limits<double>::infinity();
+    // A face within `reach` <= cell of p has its first corner within two cells of p's.
+    for (long dx = -2; dx <= 2; ++dx)
+      for (long dy = -2; dy <= 2; ++dy)
+        for (long dz = -2; dz <= 2; ++dz) {
+          auto it = grid.find({k[0] + dx, k[1] + dy, k[2] + dz});
+          if (it == grid.end()) continue;
+          for (int f : it->second) {
+            const auto& t = mesh.faces[f];
+            const Vec3 q = closest_on_triangle(p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+            best = std::min(best, (p - q).norm());
+          }
+        }
+    out.push_back(best <= reach ? best : std::numeric_limits<double>::infinity());
+  }
+  return out;
 }
 
 }  // namespace rktest

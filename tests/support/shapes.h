@@ -44,4 +44,10 @@ struct Rng {
 double median(std::vector<double> v);
 double percentile(std::vector<double> v, double q);
 
+/// Distance from each point to the nearest point of the mesh's surface (its triangles), for points
+/// within `reach` of it; farther points get +infinity. A uniform grid of cells of size `reach`
+/// (at least the longest edge) keeps it linear.
+std::vector<double> distance_to_surface(const reliefkit::TriMesh& mesh, const std::vector<reliefkit::Vec3>& points,
+                                        double reach);
+
 }  // namespace rktest

@@ -6,6 +6,10 @@
 // 2003). M is diagonal with the mixed Voronoi areas, so M^-1 L f approximates the
 // Laplace-Beltrami operator of f (for f = x^2 + y^2 on a plane: 4). Degenerate faces contribute
 // nothing (their cotangents are not finite) and are counted.
+//
+// Assembly is row by row in parallel, straight into compressed storage (every row holds its
+// diagonal, columns sorted), in time linear in the face count even around a vertex of very high
+// valence. Being symmetric, L is equally its own row-major view (reliefkit/solvers.h uses that).
 #pragma once
 
 #include <Eigen/Sparse>
@@ -16,10 +20,18 @@ namespace reliefkit {
 
 struct LaplacianResult {
   Eigen::SparseMatrix<double> L;     // cotangent Laplacian (stiffness), #V x #V
-  Eigen::SparseMatrix<double> M;     // diagonal mixed-Voronoi mass matrix, #V x #V
+  Eigen::VectorXd mass;              // mixed Voronoi area per vertex (the diagonal of M)
+  Eigen::SparseMatrix<double> M;     // the same as a diagonal sparse matrix
   long long degenerate_faces = 0;
 };
 
-LaplacianResult cotangent_laplacian(const TriMesh& mesh);
+struct LaplacianOptions {
+  /// Negative cotangent weights (obtuse triangles) set to zero: L stays an M-matrix, so a heat
+  /// step (M - t L) x = M b keeps a maximum principle on poor triangulations.
+  bool clamp_negative = false;
+};
+
+LaplacianResult cotangent_laplacian(const TriMesh& mesh, const VertexFaces& vf, const LaplacianOptions& options = {});
+LaplacianResult cotangent_laplacian(const TriMesh& mesh, const LaplacianOptions& options = {});
 
 }  // namespace reliefkit
