@@ -398,13 +398,13 @@ static Curvature compute_curvature_jets(const TriMesh& mesh, const CurvatureOpti
   return out;
 }
 
-double feature_width(const TriMesh& mesh, const Curvature& c, const MeshScale& scale) {
+double feature_width(const TriMesh& mesh, const Curvature& c, const MeshScale& scale, const MeshTopology* topology) {
   if (c.dcurv.size() != c.k1.size() || c.k1.empty()) return 0;
-  const VertexFaces vf = vertex_faces(mesh);
-  const VertexRing border = boundary_rings(mesh, vf);
+  const VertexRing border = topology ? VertexRing() : boundary_rings(mesh, vertex_faces(mesh));
+  const VertexRing& b = topology ? topology->border : border;
   std::vector<double> k, d;
   for (size_t v = 0; v < c.k1.size(); ++v) {
-    if (border.offset[v + 1] > border.offset[v]) continue;
+    if (b.offset[v + 1] > b.offset[v]) continue;
     if (!scale.counts.empty() && !scale.counts[v]) continue;
     const CurvatureDerivative& C = c.dcurv[v];
     k.push_back(std::max(std::abs(c.k1[v]), std::abs(c.k2[v])));
@@ -418,13 +418,15 @@ ScaledCurvature curvature_at_scale(const TriMesh& mesh, const Length& presmoothi
                                    Progress progress) {
   require_triangles(mesh);
   ScaledCurvature out;
-  report(progress, 0, "Scale and noise level");
+  report(progress, 0, "Vertex adjacency");
+  out.topology = std::make_shared<const MeshTopology>(mesh_topology(mesh));
+  report(progress, 2, "Scale and noise level");
   out.scale = mesh_scale(mesh);
   if (!(out.scale.edge > 0) || !std::isfinite(1 / out.scale.edge) || !std::isfinite(out.scale.object_size))
     throw InputError("the mesh has no usable edge length (its edges have zero or non-finite length): nothing to "
                      "measure. Remove degenerate faces first, e.g. Filters > Cleaning and Repairing > Remove Zero "
                      "Area Faces and Merge Close Vertices.");
-  out.noise = estimate_noise(mesh, out.scale);
+  out.noise = estimate_noise(mesh, out.scale, kNoiseSamples, &out.topology->faces);
   presmoothing.check("Pre-smoothing", 0, 100, out.scale.edge);
   out.presmoothing = presmoothing.resolve(out.scale.edge, automatic_presmoothing(out.noise, out.scale));
   CurvatureOptions co;
@@ -432,14 +434,21 @@ ScaledCurvature curvature_at_scale(const TriMesh& mesh, const Length& presmoothi
   co.smoothing_scale = out.presmoothing;
   co.derivatives = true;
   co.progress = progress;
+  co.topology = out.topology.get();
   out.curvature = compute_curvature(mesh, co);
   return out;
 }
 
 Curvature compute_curvature(const TriMesh& input, const CurvatureOptions& opt) {
   require_triangles(input);
-  report(opt.progress, 0, "Vertex adjacency");
-  VertexFaces vf = vertex_faces(input);
+  MeshTopology own;
+  if (!opt.topology) {
+    report(opt.progress, 0, "Vertex adjacency");
+    own.faces = vertex_faces(input);
+    if (opt.smoothing_scale > 0) own.ring = vertex_rings(input, own.faces), own.border = boundary_rings(input, own.faces);
+  }
+  const MeshTopology& topology = opt.topology ? *opt.topology : own;
+  const VertexFaces& vf = topology.faces;
   // Pre-smoothing: the curvature of a diffused copy of the surface is reported at the
   // original vertices.
   TriMesh smoothed;
@@ -449,7 +458,7 @@ Curvature compute_curvature(const TriMesh& input, const CurvatureOptions& opt) {
     std::copy(input.faces.begin(), input.faces.end(), smoothed.faces.begin());
     sized(smoothed.vertices, input.vertices.size(), Vec3(Vec3::Zero()));
     std::copy(input.vertices.begin(), input.vertices.end(), smoothed.vertices.begin());
-    smooth_positions(input, vf, opt.smoothing_scale, smoothed.vertices);
+    smooth_positions(input, topology, opt.smoothing_scale, smoothed.vertices);
   }
   const TriMesh& mesh = opt.smoothing_scale > 0 ? smoothed : input;
   report(opt.progress, 10, "Normals and Voronoi areas");

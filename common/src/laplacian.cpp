@@ -8,7 +8,8 @@
 
 namespace reliefkit {
 
-LaplacianResult cotangent_laplacian(const TriMesh& mesh, const VertexFaces& vf, const LaplacianOptions& opt) {
+LaplacianResult cotangent_laplacian(const TriMesh& mesh, const MeshTopology& topology, const LaplacianOptions& opt) {
+  const VertexFaces& vf = topology.faces;
   LaplacianResult r;
   const int nv = mesh.n_vertices();
   const long nf = static_cast<long>(mesh.faces.size());
@@ -40,7 +41,7 @@ LaplacianResult cotangent_laplacian(const TriMesh& mesh, const VertexFaces& vf, 
 
   // Row v: its ring and itself, sorted. The ring bounds the row's length, so the row is sized
   // first, then filled; entries are found by binary search (a fan's pole row stays linear).
-  const VertexRing ring = vertex_rings(mesh, vf);
+  const VertexRing& ring = topology.ring;
   r.L.resize(nv, nv);
   r.L.resizeNonZeros(static_cast<Eigen::Index>(ring.vertex.size()) + nv);
   int* outer = r.L.outerIndexPtr();
@@ -84,7 +85,10 @@ LaplacianResult cotangent_laplacian(const TriMesh& mesh, const VertexFaces& vf, 
 }
 
 LaplacianResult cotangent_laplacian(const TriMesh& mesh, const LaplacianOptions& options) {
-  return cotangent_laplacian(mesh, vertex_faces(mesh), options);
+  MeshTopology t;
+  t.faces = vertex_faces(mesh);
+  t.ring = vertex_rings(mesh, t.faces);
+  return cotangent_laplacian(mesh, t, options);
 }
 
 }  // namespace reliefkit

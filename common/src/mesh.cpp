@@ -132,4 +132,44 @@ VertexRing vertex_rings(const TriMesh& mesh, const VertexFaces& vf) {
   return r;
 }
 
+VertexRing boundary_rings(const TriMesh& mesh, const VertexFaces& vf) {
+  const int nv = mesh.n_vertices();
+  VertexRing r;
+  r.offset.assign(nv + 1, 0);
+  std::vector<std::vector<int>> nb(nv);
+#pragma omp parallel
+  {
+    std::vector<int> others;  // the other corners of v's faces; an edge with one face appears once
+#pragma omp for schedule(dynamic, 4096)
+    for (int v = 0; v < nv; ++v) {
+      others.clear();
+      for (int k = vf.offset[v]; k < vf.offset[v + 1]; ++k) {
+        const auto& f = mesh.faces[vf.face[k]];
+        const int c = vf.corner[k];
+        for (int u : {f[(c + 1) % 3], f[(c + 2) % 3]})
+          if (u != v) others.push_back(u);
+      }
+      std::sort(others.begin(), others.end());  // O(d log d): fans of 100,000 faces stay cheap
+      for (size_t i = 0; i < others.size();) {
+        size_t j = i;
+        while (j < others.size() && others[j] == others[i]) ++j;
+        if (j - i == 1) nb[v].push_back(others[i]);
+        i = j;
+      }
+    }
+  }
+  for (int v = 0; v < nv; ++v) r.offset[v + 1] = r.offset[v] + static_cast<int>(nb[v].size());
+  r.vertex.reserve(r.offset[nv]);
+  for (int v = 0; v < nv; ++v) r.vertex.insert(r.vertex.end(), nb[v].begin(), nb[v].end());
+  return r;
+}
+
+MeshTopology mesh_topology(const TriMesh& mesh) {
+  MeshTopology t;
+  t.faces = vertex_faces(mesh);
+  t.ring = vertex_rings(mesh, t.faces);
+  t.border = boundary_rings(mesh, t.faces);
+  return t;
+}
+
 }  // namespace reliefkit

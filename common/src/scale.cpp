@@ -141,11 +141,12 @@ std::string format_length(const Length& length) {
   return length.is_auto() ? "auto" : length.kind == Length::Kind::Edges ? number(length.value) : number(length.value) + " mesh units";
 }
 
-NoiseEstimate estimate_noise(const TriMesh& mesh, const MeshScale& scale, int max_samples) {
+NoiseEstimate estimate_noise(const TriMesh& mesh, const MeshScale& scale, int max_samples, const VertexFaces* faces) {
   NoiseEstimate out;
   const int nv = mesh.n_vertices();
   if (nv == 0 || !(scale.edge > 0)) return out;
-  VertexFaces vf = vertex_faces(mesh);
+  const VertexFaces own = faces ? VertexFaces() : vertex_faces(mesh);
+  const VertexFaces& vf = faces ? *faces : own;
   std::vector<int> candidates;
   candidates.reserve(nv);
   for (int v = 0; v < nv; ++v)

@@ -64,43 +64,11 @@ void diffuse(const TriMesh& mesh, const VertexRing& ring, double scale, std::vec
   diffuse_impl(mesh, ring, scale, values);
 }
 
-VertexRing boundary_rings(const TriMesh& mesh, const VertexFaces& vf) {
-  const int nv = mesh.n_vertices();
-  VertexRing r;
-  r.offset.assign(nv + 1, 0);
-  std::vector<std::vector<int>> nb(nv);
-#pragma omp parallel
-  {
-    std::vector<int> others;  // the other corners of v's faces; an edge with one face appears once
-#pragma omp for schedule(dynamic, 4096)
-    for (int v = 0; v < nv; ++v) {
-      others.clear();
-      for (int k = vf.offset[v]; k < vf.offset[v + 1]; ++k) {
-        const auto& f = mesh.faces[vf.face[k]];
-        const int c = vf.corner[k];
-        for (int u : {f[(c + 1) % 3], f[(c + 2) % 3]})
-          if (u != v) others.push_back(u);
-      }
-      std::sort(others.begin(), others.end());  // O(d log d): fans of 100,000 faces stay cheap
-      for (size_t i = 0; i < others.size();) {
-        size_t j = i;
-        while (j < others.size() && others[j] == others[i]) ++j;
-        if (j - i == 1) nb[v].push_back(others[i]);
-        i = j;
-      }
-    }
-  }
-  for (int v = 0; v < nv; ++v) r.offset[v + 1] = r.offset[v] + static_cast<int>(nb[v].size());
-  r.vertex.reserve(r.offset[nv]);
-  for (int v = 0; v < nv; ++v) r.vertex.insert(r.vertex.end(), nb[v].begin(), nb[v].end());
-  return r;
-}
-
-void smooth_positions(const TriMesh& mesh, const VertexFaces& vf, double scale, std::vector<Vec3>& x) {
+void smooth_positions(const TriMesh& mesh, const MeshTopology& topology, double scale, std::vector<Vec3>& x) {
   const int steps = diffusion_steps(mesh, scale);
   if (steps == 0) return;
-  const VertexRing ring = vertex_rings(mesh, vf);
-  const VertexRing border = boundary_rings(mesh, vf);
+  const VertexRing& ring = topology.ring;
+  const VertexRing& border = topology.border;
   const int nv = mesh.n_vertices();
   std::vector<Vec3> y;
   sized(y, x.size(), Vec3(Vec3::Zero()));

@@ -37,7 +37,7 @@ BaseNormals estimate_base_normals(const TriMesh& mesh, const std::vector<Vec3>& 
   if (opt.progress) opt.progress(0, "Base normals: system");
   LaplacianOptions lo;
   lo.clamp_negative = true;
-  LaplacianResult lap = cotangent_laplacian(mesh, vertex_faces(mesh), lo);
+  LaplacianResult lap = opt.topology ? cotangent_laplacian(mesh, *opt.topology, lo) : cotangent_laplacian(mesh, lo);
   // A = M - t L. A vertex without area (isolated, or only in degenerate faces) has no coupling
   // either: its row becomes the identity and it keeps its own normal.
   Eigen::SparseMatrix<double>& A = lap.L;

@@ -25,6 +25,7 @@ struct BaseNormalOptions {
   double tolerance = 1e-3;    // relative residual asked of the solve
   SolverMethod method = SolverMethod::Auto;
   Progress progress = nullptr;
+  const MeshTopology* topology = nullptr;  // the mesh's connectivity, when the caller has it
 };
 
 struct BaseNormals {

@@ -83,7 +83,7 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
   const double h = r.scale.edge;
   p.base_scale.check("Base surface scale", 0.5, 10000, h);
   p.edge_smoothing.check("Edge smoothing", 0, 100, h);
-  r.feature_width = feature_width(mesh, r.curvature, r.scale);
+  r.feature_width = feature_width(mesh, r.curvature, r.scale, r.topology.get());
   r.base_scale = p.base_scale.resolve(h, std::max(automatic_base_scale(r.scale), kBaseScaleWidths * r.feature_width));
   r.edge_smoothing = p.edge_smoothing.resolve(h, ReliefEdgeParams::kDefaultEdgeSmoothingEdges * h);
   r.min_length = p.min_length_edges * h;
@@ -96,6 +96,7 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
   if (p.progress) p.progress(60, "Base normals");
   BaseNormalOptions bo;
   bo.scale = r.base_scale;
+  bo.topology = r.topology.get();
   r.base = estimate_base_normals(mesh, c.normal, bo);
 
   if (p.progress) p.progress(80, "Edge directions");
@@ -165,10 +166,8 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
   // nearest to the current ones; where none exists, the nearest value.
   if (r.edge_smoothing > 0) {
     if (p.progress) p.progress(88, "Edge smoothing");
-    VertexFaces vf = vertex_faces(mesh);
-    VertexRing ring = vertex_rings(mesh, vf);
     std::vector<double> Gs = r.G;
-    diffuse(mesh, ring, r.edge_smoothing, Gs);
+    diffuse(mesh, r.topology->ring, r.edge_smoothing, Gs);
 #pragma omp parallel for schedule(static)
     for (int v = 0; v < nv; ++v) {
       const double k1 = c.k1[v], k2 = c.k2[v];

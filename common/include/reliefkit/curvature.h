@@ -20,6 +20,8 @@
 //  * Units: curvature is 1/length and C is 1/length^2 in the mesh's units.
 #pragma once
 
+#include <memory>
+
 #include "reliefkit/mesh.h"
 #include "reliefkit/scale.h"
 
@@ -53,6 +55,8 @@ struct CurvatureOptions {
   /// Also estimate the derivative tensor (the second pass roughly doubles the time).
   bool derivatives = true;
   Progress progress = nullptr;
+  /// The mesh's connectivity, when the caller has it (else built here).
+  const MeshTopology* topology = nullptr;
 };
 
 struct Curvature {
@@ -81,6 +85,7 @@ Curvature compute_curvature(const TriMesh& mesh, const CurvatureOptions& options
 /// they give ("auto") or the user's multiple of the edge length, and the curvature with
 /// derivatives at that scale.
 struct ScaledCurvature {
+  std::shared_ptr<const MeshTopology> topology;  // built once, for the later stages too
   MeshScale scale;
   NoiseEstimate noise;
   double presmoothing = 0;  // used, mesh units
@@ -95,7 +100,8 @@ ScaledCurvature curvature_at_scale(const TriMesh& mesh, const Length& presmoothi
 /// (profile tanh(x / w)) it is about 0.75 w whatever the mesh resolution and unit (measured on the
 /// cylinder relief at 100 K, 1 M and 4 M faces: 0.029, 0.030, 0.030 for w = 0.04). 0 if the mesh
 /// has no curvature derivative.
-double feature_width(const TriMesh& mesh, const Curvature& curvature, const MeshScale& scale);
+double feature_width(const TriMesh& mesh, const Curvature& curvature, const MeshScale& scale,
+                     const MeshTopology* topology = nullptr);
 
 /// Unit vertex normals by Max's weights (exact for vertices on a sphere). Vertices without a
 /// usable face get (0,0,1).

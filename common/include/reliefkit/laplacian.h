@@ -31,7 +31,8 @@ struct LaplacianOptions {
   bool clamp_negative = false;
 };
 
-LaplacianResult cotangent_laplacian(const TriMesh& mesh, const VertexFaces& vf, const LaplacianOptions& options = {});
+/// `topology`: its faces and ring are used (the border is not needed).
+LaplacianResult cotangent_laplacian(const TriMesh& mesh, const MeshTopology& topology, const LaplacianOptions& options = {});
 LaplacianResult cotangent_laplacian(const TriMesh& mesh, const LaplacianOptions& options = {});
 
 }  // namespace reliefkit

@@ -67,4 +67,17 @@ struct VertexRing {
 };
 VertexRing vertex_rings(const TriMesh& mesh, const VertexFaces& vf);
 
+/// Neighbours of each vertex across boundary edges (edges with one face), CSR; interior
+/// vertices have none.
+VertexRing boundary_rings(const TriMesh& mesh, const VertexFaces& vf);
+
+/// A mesh's connectivity as the cores use it, built once per run and shared by its stages: the
+/// positions may change (pre-smoothing), the connectivity does not.
+struct MeshTopology {
+  VertexFaces faces;  // vertex -> faces
+  VertexRing ring;    // vertex -> neighbours
+  VertexRing border;  // vertex -> neighbours across boundary edges
+};
+MeshTopology mesh_topology(const TriMesh& mesh);
+
 }  // namespace reliefkit

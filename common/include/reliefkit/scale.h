@@ -82,7 +82,10 @@ struct NoiseEstimate {
 /// account) is the local noise. The median over the vertices, calibrated on synthetic Gaussian
 /// noise (tests/unit/test_scale.cpp), is the estimate: relief features and sharp edges occupy a
 /// minority of the vertices and do not move it.
-NoiseEstimate estimate_noise(const TriMesh& mesh, const MeshScale& scale, int max_samples = 50000);
+constexpr int kNoiseSamples = 50000;
+/// `faces`: the mesh's vertex-face adjacency when the caller has it (else built here).
+NoiseEstimate estimate_noise(const TriMesh& mesh, const MeshScale& scale, int max_samples = kNoiseSamples,
+                             const VertexFaces* faces = nullptr);
 
 /// Relative noise below which a mesh counts as clean (no automatic pre-smoothing): the
 /// residual a clean, finely sampled smooth surface leaves is well below it.

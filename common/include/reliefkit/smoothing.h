@@ -18,14 +18,10 @@ int diffusion_steps(const TriMesh& mesh, double scale);
 void diffuse(const TriMesh& mesh, const VertexRing& ring, double scale, std::vector<double>& values);
 void diffuse(const TriMesh& mesh, const VertexRing& ring, double scale, std::vector<Vec3>& values);
 
-/// Neighbours of each vertex across boundary edges (edges with one face), CSR; interior
-/// vertices have none.
-VertexRing boundary_rings(const TriMesh& mesh, const VertexFaces& vf);
-
 /// Diffuses vertex positions like `diffuse`, except that a boundary vertex (two boundary
 /// neighbours) moves only along the boundary: it takes the mean of its boundary neighbours.
 /// Plain diffusion pulls an open boundary inwards and bends the surface next to it, which
 /// curvature-derivative curves then trace along the whole rim.
-void smooth_positions(const TriMesh& mesh, const VertexFaces& vf, double scale, std::vector<Vec3>& positions);
+void smooth_positions(const TriMesh& mesh, const MeshTopology& topology, double scale, std::vector<Vec3>& positions);
 
 }  // namespace reliefkit
