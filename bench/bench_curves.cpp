@@ -15,9 +15,9 @@
 #include <sstream>
 #include <string>
 
-#include "demarcating.h"
-#include "relief_edges.h"
-#include "ridges.h"
+#include "reliefkit/demarcating.h"
+#include "reliefkit/relief_edges.h"
+#include "reliefkit/ridges.h"
 #include "reliefs.h"
 #include "bench_util.h"
 #include "shapes.h"

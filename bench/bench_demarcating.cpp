@@ -14,7 +14,7 @@
 #include <sstream>
 #include <string>
 
-#include "demarcating.h"
+#include "reliefkit/demarcating.h"
 #include "bench_util.h"
 #include "reliefs.h"
 #include "shapes.h"

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "bench_util.h"
-#include "demarcating.h"
+#include "reliefkit/demarcating.h"
 #include "reliefkit/scale.h"
 #include "mesh_files.h"
 #include "reliefs.h"

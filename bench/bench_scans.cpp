@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "bench_util.h"
-#include "demarcating.h"
+#include "reliefkit/demarcating.h"
 #include "mesh_files.h"
-#include "relief_edges.h"
-#include "ridges.h"
+#include "reliefkit/relief_edges.h"
+#include "reliefkit/ridges.h"
 
 using namespace reliefkit;
 

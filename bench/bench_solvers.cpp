@@ -11,7 +11,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "base_normals.h"
+#include "reliefkit/base_normals.h"
 #include "bench_util.h"
 #include "reliefkit/curvature.h"
 #include "shapes.h"

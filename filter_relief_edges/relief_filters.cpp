@@ -4,11 +4,11 @@
 #include <cmath>
 #include <tuple>
 
-#include "base_normals.h"
+#include "reliefkit/base_normals.h"
 #include "mesh_bridge.h"
 #include "params.h"
-#include "relief_edges.h"
-#include "ridges.h"
+#include "reliefkit/relief_edges.h"
+#include "reliefkit/ridges.h"
 
 namespace reliefkit::ml {
 namespace {

@@ -14,11 +14,11 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "demarcating.h"
-#include "relief_edges.h"
+#include "reliefkit/demarcating.h"
+#include "reliefkit/relief_edges.h"
 #include "reliefkit/curvature.h"
 #include "reliefkit/repair.h"
-#include "ridges.h"
+#include "reliefkit/ridges.h"
 
 using namespace reliefkit;
 

@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "bad_input.h"
-#include "demarcating.h"
+#include "reliefkit/demarcating.h"
 #include "mesh_files.h"
 #include "reliefkit/scale.h"
 #include "reliefs.h"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "demarcating.h"
+#include "reliefkit/demarcating.h"
 #include "reliefs.h"
 #include "shapes.h"
 

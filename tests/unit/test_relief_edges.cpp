@@ -4,11 +4,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "demarcating.h"
-#include "relief_edges.h"
+#include "reliefkit/demarcating.h"
+#include "reliefkit/relief_edges.h"
 #include "reliefkit/cubic_form.h"
 #include "reliefs.h"
-#include "ridges.h"
+#include "reliefkit/ridges.h"
 #include "shapes.h"
 
 using namespace reliefkit;

@@ -4,7 +4,7 @@
 
 #include <cstdio>
 
-#include "demarcating.h"
+#include "reliefkit/demarcating.h"
 #include "reliefkit/repair.h"
 #include "reliefs.h"
 #include "shapes.h"

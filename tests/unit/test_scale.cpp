@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "demarcating.h"
-#include "relief_edges.h"
+#include "reliefkit/demarcating.h"
+#include "reliefkit/relief_edges.h"
 #include "reliefkit/curvature.h"
 #include "reliefkit/scale.h"
 #include "reliefs.h"

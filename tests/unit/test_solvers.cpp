@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "base_normals.h"
+#include "reliefkit/base_normals.h"
 #include "reliefkit/curvature.h"
 #include "reliefkit/laplacian.h"
 #include "reliefkit/solvers.h"

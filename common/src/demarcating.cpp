@@ -1,4 +1,4 @@
-#include "demarcating.h"
+#include "reliefkit/demarcating.h"
 
 #include <algorithm>
 #include <cmath>

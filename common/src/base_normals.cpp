@@ -1,4 +1,4 @@
-#include "base_normals.h"
+#include "reliefkit/base_normals.h"
 
 #include <algorithm>
 #include <cmath>

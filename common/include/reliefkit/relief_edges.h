@@ -13,7 +13,7 @@
 // normal (1 / (n . n_base) grows with it).
 #pragma once
 
-#include "base_normals.h"
+#include "reliefkit/base_normals.h"
 #include "reliefkit/curvature.h"
 #include "reliefkit/zero_crossings.h"
 

@@ -1,4 +1,4 @@
-#include "relief_edges.h"
+#include "reliefkit/relief_edges.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "ridges.h"
+#include "reliefkit/ridges.h"
 
 #include <algorithm>
 #include <cmath>
