@@ -467,13 +467,13 @@ Curvature compute_curvature(const TriMesh& input, const CurvatureOptions& opt) {
   return compute_curvature_facefit(mesh, opt, vf, std::move(normals));
 }
 
-static Curvature compute_curvature_facefit(const TriMesh& mesh, const CurvatureOptions& opt, const VertexFaces& vf,
-                                           std::vector<Vec3> normals) {
-  const int nv = mesh.n_vertices(), nf = mesh.n_faces();
-  Curvature out;
-  out.normal = std::move(normals);
-  std::vector<FaceFrame> ff;
-  sized(ff, nf);
+// The per-face fit (Rusinkiewicz 2004) in four steps: a frame and II per face, II averaged at
+// the vertices and diagonalised, C per face from the vertices' II, C averaged at the vertices.
+
+// Step 1: per face a tangent frame, the mixed corner areas and II fitted to the normal
+// differences along the edges (dn = II e). Returns the number of degenerate faces.
+static long long fit_face_II(const TriMesh& mesh, const std::vector<Vec3>& normal, std::vector<FaceFrame>& ff) {
+  const int nf = mesh.n_faces();
   long long degenerate = 0;
 #pragma omp parallel for schedule(static) reduction(+ : degenerate)
   for (int i = 0; i < nf; ++i) {
@@ -504,7 +504,7 @@ static Curvature compute_curvature_facefit(const TriMesh& mesh, const CurvatureO
       w00 += u * u;
       w01 += u * v;
       w22 += v * v;
-      Vec3 dn = out.normal[f[prev3(j)]] - out.normal[f[next3(j)]];
+      Vec3 dn = normal[f[prev3(j)]] - normal[f[next3(j)]];
       double dnu = dn.dot(t), dnv = dn.dot(b);
       m0 += dnu * u;
       m1 += dnu * v + dnv * u;
@@ -516,9 +516,13 @@ static Curvature compute_curvature_facefit(const TriMesh& mesh, const CurvatureO
     if (!x.allFinite()) x.setZero();
     for (int j = 0; j < 3; ++j) fr.II[j] = float(x[j]);
   }
-  out.degenerate_faces = degenerate;
-  report(opt.progress, 35, "Principal curvatures");
+  return degenerate;
+}
 
+// Step 2: II averaged over the faces around each vertex (weighted by corner area) and
+// diagonalised. Vertices without area, or whose curvature is not finite, are marked bad.
+static void principal_curvatures(const VertexFaces& vf, const std::vector<FaceFrame>& ff, Curvature& out) {
+  const int nv = static_cast<int>(out.normal.size());
   sized(out.dir1, nv, Vec3(Vec3::Zero()));
   sized(out.dir2, nv, Vec3(Vec3::Zero()));
   sized(out.k1, nv);
@@ -560,72 +564,95 @@ static Curvature compute_curvature_facefit(const TriMesh& mesh, const CurvatureO
   }
   for (int v = 0; v < nv; ++v)
     if (bad[v]) out.bad_vertices.push_back(v);
+}
 
+// Step 3: per face the derivative tensor fitted to the differences of the vertices' II along the
+// edges.
+static void fit_face_C(const TriMesh& mesh, const Curvature& out, std::vector<FaceFrame>& ff) {
+  const int nf = mesh.n_faces();
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < nf; ++i) {
+    FaceFrame& fr = ff[i];
+    std::fill(std::begin(fr.C), std::end(fr.C), 0.f);
+    if (!(fr.area[0] + fr.area[1] + fr.area[2] > 0)) continue;
+    const auto& f = mesh.faces[i];
+    Vec3 t = v3(fr.t), b = v3(fr.b);
+    double fc[3][3];  // vertex II in the face frame
+    for (int j = 0; j < 3; ++j) {
+      int v = f[j];
+      project_II(out.dir1[v], out.dir2[v], out.k1[v], 0, out.k2[v], t, b, fc[j][0], fc[j][1], fc[j][2]);
+    }
+    Vec3 e[3] = {mesh.vertices[f[2]] - mesh.vertices[f[1]], mesh.vertices[f[0]] - mesh.vertices[f[2]],
+                 mesh.vertices[f[1]] - mesh.vertices[f[0]]};
+    double w00 = 0, w01 = 0, w33 = 0;
+    Eigen::Vector4d m = Eigen::Vector4d::Zero();
+    for (int j = 0; j < 3; ++j) {
+      double d0 = fc[prev3(j)][0] - fc[next3(j)][0], d1 = fc[prev3(j)][1] - fc[next3(j)][1],
+             d2 = fc[prev3(j)][2] - fc[next3(j)][2];
+      double u = e[j].dot(t), v = e[j].dot(b);
+      w00 += u * u;
+      w01 += u * v;
+      w33 += v * v;
+      m[0] += u * d0;
+      m[1] += v * d0 + 2 * u * d1;
+      m[2] += 2 * v * d1 + u * d2;
+      m[3] += v * d2;
+    }
+    Eigen::Matrix4d w;
+    w << w00, w01, 0, 0,  //
+        w01, 2 * w00 + w33, 2 * w01, 0,  //
+        0, 2 * w01, w00 + 2 * w33, w01,  //
+        0, 0, w01, w33;
+    Eigen::Vector4d x = w.ldlt().solve(m);
+    if (!x.allFinite()) x.setZero();
+    for (int j = 0; j < 4; ++j) fr.C[j] = float(x[j]);
+  }
+}
+
+// Step 4: C averaged at the vertices in their principal frames.
+static void vertex_derivatives(const VertexFaces& vf, const std::vector<FaceFrame>& ff, Curvature& out) {
+  const int nv = static_cast<int>(out.normal.size());
+  sized(out.dcurv, nv);
+#pragma omp parallel for schedule(static)
+  for (int v = 0; v < nv; ++v) {
+    double A = out.point_area[v];
+    if (!(A > 0)) continue;
+    CurvatureDerivative acc;
+    for (int k = vf.offset[v]; k < vf.offset[v + 1]; ++k) {
+      const FaceFrame& fr = ff[vf.face[k]];
+      double a = fr.area[vf.corner[k]];
+      if (!(a > 0)) continue;
+      double C[4] = {fr.C[0], fr.C[1], fr.C[2], fr.C[3]};
+      CurvatureDerivative p = project_C(v3(fr.t), v3(fr.b), C, out.dir1[v], out.dir2[v]);
+      acc.a += a * p.a;
+      acc.b += a * p.b;
+      acc.c += a * p.c;
+      acc.d += a * p.d;
+    }
+    acc.a /= A;
+    acc.b /= A;
+    acc.c /= A;
+    acc.d /= A;
+    if (!(std::isfinite(acc.a) && std::isfinite(acc.b) && std::isfinite(acc.c) && std::isfinite(acc.d)))
+      acc = CurvatureDerivative{};
+    out.dcurv[v] = acc;
+  }
+}
+
+static Curvature compute_curvature_facefit(const TriMesh& mesh, const CurvatureOptions& opt, const VertexFaces& vf,
+                                           std::vector<Vec3> normals) {
+  Curvature out;
+  out.normal = std::move(normals);
+  std::vector<FaceFrame> ff;
+  sized(ff, mesh.n_faces());
+  out.degenerate_faces = fit_face_II(mesh, out.normal, ff);
+  report(opt.progress, 35, "Principal curvatures");
+  principal_curvatures(vf, ff, out);
   if (opt.derivatives) {
     report(opt.progress, 60, "Curvature derivatives");
-#pragma omp parallel for schedule(static)
-    for (int i = 0; i < nf; ++i) {
-      FaceFrame& fr = ff[i];
-      std::fill(std::begin(fr.C), std::end(fr.C), 0.f);
-      if (!(fr.area[0] + fr.area[1] + fr.area[2] > 0)) continue;
-      const auto& f = mesh.faces[i];
-      Vec3 t = v3(fr.t), b = v3(fr.b);
-      double fc[3][3];  // vertex II in the face frame
-      for (int j = 0; j < 3; ++j) {
-        int v = f[j];
-        project_II(out.dir1[v], out.dir2[v], out.k1[v], 0, out.k2[v], t, b, fc[j][0], fc[j][1], fc[j][2]);
-      }
-      Vec3 e[3] = {mesh.vertices[f[2]] - mesh.vertices[f[1]], mesh.vertices[f[0]] - mesh.vertices[f[2]],
-                   mesh.vertices[f[1]] - mesh.vertices[f[0]]};
-      double w00 = 0, w01 = 0, w33 = 0;
-      Eigen::Vector4d m = Eigen::Vector4d::Zero();
-      for (int j = 0; j < 3; ++j) {
-        double d0 = fc[prev3(j)][0] - fc[next3(j)][0], d1 = fc[prev3(j)][1] - fc[next3(j)][1],
-               d2 = fc[prev3(j)][2] - fc[next3(j)][2];
-        double u = e[j].dot(t), v = e[j].dot(b);
-        w00 += u * u;
-        w01 += u * v;
-        w33 += v * v;
-        m[0] += u * d0;
-        m[1] += v * d0 + 2 * u * d1;
-        m[2] += 2 * v * d1 + u * d2;
-        m[3] += v * d2;
-      }
-      Eigen::Matrix4d w;
-      w << w00, w01, 0, 0,  //
-          w01, 2 * w00 + w33, 2 * w01, 0,  //
-          0, 2 * w01, w00 + 2 * w33, w01,  //
-          0, 0, w01, w33;
-      Eigen::Vector4d x = w.ldlt().solve(m);
-      if (!x.allFinite()) x.setZero();
-      for (int j = 0; j < 4; ++j) fr.C[j] = float(x[j]);
-    }
+    fit_face_C(mesh, out, ff);
     report(opt.progress, 80, "Curvature derivatives");
-    sized(out.dcurv, nv);
-#pragma omp parallel for schedule(static)
-    for (int v = 0; v < nv; ++v) {
-      double A = out.point_area[v];
-      if (!(A > 0)) continue;
-      CurvatureDerivative acc;
-      for (int k = vf.offset[v]; k < vf.offset[v + 1]; ++k) {
-        const FaceFrame& fr = ff[vf.face[k]];
-        double a = fr.area[vf.corner[k]];
-        if (!(a > 0)) continue;
-        double C[4] = {fr.C[0], fr.C[1], fr.C[2], fr.C[3]};
-        CurvatureDerivative p = project_C(v3(fr.t), v3(fr.b), C, out.dir1[v], out.dir2[v]);
-        acc.a += a * p.a;
-        acc.b += a * p.b;
-        acc.c += a * p.c;
-        acc.d += a * p.d;
-      }
-      acc.a /= A;
-      acc.b /= A;
-      acc.c /= A;
-      acc.d /= A;
-      if (!(std::isfinite(acc.a) && std::isfinite(acc.b) && std::isfinite(acc.c) && std::isfinite(acc.d)))
-        acc = CurvatureDerivative{};
-      out.dcurv[v] = acc;
-    }
+    vertex_derivatives(vf, ff, out);
   }
   report(opt.progress, 100, "Curvature done");
   return out;

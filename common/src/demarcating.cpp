@@ -1,4 +1,5 @@
 #include "reliefkit/demarcating.h"
+#include "reliefkit/curve_selection.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,5 @@
 #include "reliefkit/relief_edges.h"
+#include "reliefkit/curve_selection.h"
 
 #include <algorithm>
 #include <cmath>
@@ -75,11 +76,11 @@ void ReliefEdgeParams::validate() const {
   require_range(weak_angle, "Orientation restriction angle", 0, kPi / 2);
 }
 
-ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParams& p) {
-  p.validate();
-  require_triangles(mesh);
-  ReliefEdgeResult r;
-  static_cast<ScaledCurvature&>(r) = curvature_at_scale(mesh, p.presmoothing, p.estimator, p.progress);
+namespace {
+
+// Step 1: the lengths the run uses, in mesh units; the fit radius and base scale follow the
+// features' own width.
+void resolve_lengths(const TriMesh& mesh, const ReliefEdgeParams& p, ReliefEdgeResult& r) {
   const double h = r.scale.edge;
   p.base_scale.check("Base surface scale", 0.5, 10000, h);
   p.edge_smoothing.check("Edge smoothing", 0, 100, h);
@@ -88,21 +89,19 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
   r.edge_smoothing = p.edge_smoothing.resolve(h, ReliefEdgeParams::kDefaultEdgeSmoothingEdges * h);
   r.min_length = p.min_length_edges * h;
   r.fit_radius = std::max(p.fit_radius_edges * h, kFitRadiusWidths * r.feature_width);
-  const double radius = r.fit_radius;
+}
 
+// Step 3: per vertex the unrestricted best edge direction, the base direction (up the relief's
+// slope, in the principal frame) and whether the latter is meaningful; and the orientation window.
+struct EdgeFrames {
+  std::vector<Vec2> best, base;
+  std::vector<char> strong_base;
+};
+EdgeFrames edge_frames(const ReliefEdgeParams& p, ReliefEdgeResult& r) {
   const Curvature& c = r.curvature;
-  const int nv = mesh.n_vertices();
-
-  if (p.progress) p.progress(60, "Base normals");
-  BaseNormalOptions bo;
-  bo.scale = r.base_scale;
-  bo.topology = r.topology.get();
-  r.base = estimate_base_normals(mesh, c.normal, bo);
-
-  if (p.progress) p.progress(80, "Edge directions");
-  // Unrestricted best direction, base direction and the angle between them.
-  std::vector<Vec2> best(nv), base(nv);
-  std::vector<char> strong_base(nv, 0);
+  const int nv = static_cast<int>(c.k1.size());
+  EdgeFrames e;
+  e.best.resize(nv), e.base.resize(nv), e.strong_base.assign(nv, 0);
   sized(r.angle, size_t(nv));
 #pragma omp parallel for schedule(static)
   for (int v = 0; v < nv; ++v) {
@@ -112,19 +111,19 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
     Vec3 proj = nb - n * n.dot(nb);  // points up the relief's slope
     Vec2 b(proj.dot(c.dir1[v]), proj.dot(c.dir2[v]));
     double bl = b.norm();
-    base[v] = bl > 0 ? Vec2(b / bl) : Vec2(1, 0);
-    strong_base[v] = r.angle[v] > p.weak_angle && bl > 0;
+    e.base[v] = bl > 0 ? Vec2(b / bl) : Vec2(1, 0);
+    e.strong_base[v] = r.angle[v] > p.weak_angle && bl > 0;
     Vec2 m[3];
     int k = cubic_form_maxima(edge_correlation_form(c.dcurv[v]), m);
     if (k == 0) {
-      best[v] = base[v];
+      e.best[v] = e.base[v];
       continue;
     }
     CubicHarmonics hh(edge_correlation_form(c.dcurv[v]));
     int bi = 0;
     for (int i = 1; i < k; ++i)
       if (hh.f(m[i].x(), m[i].y()) > hh.f(m[bi].x(), m[bi].y())) bi = i;
-    best[v] = m[bi];
+    e.best[v] = m[bi];
   }
   // Window w: the RMS angle between the unrestricted direction and the base direction, over the
   // vertices where the base direction is meaningful (thesis: the standard deviation of that
@@ -132,15 +131,21 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
   double sum2 = 0;
   long cnt = 0;
   for (int v = 0; v < nv; ++v)
-    if (strong_base[v] && (r.scale.counts.empty() || r.scale.counts[v])) {  // debris does not count
-      double d = std::acos(std::clamp(best[v].dot(base[v]), -1.0, 1.0));
+    if (e.strong_base[v] && (r.scale.counts.empty() || r.scale.counts[v])) {  // debris does not count
+      double d = std::acos(std::clamp(e.best[v].dot(e.base[v]), -1.0, 1.0));
       sum2 += d * d;
       ++cnt;
     }
   r.window = std::clamp(cnt > 0 ? std::sqrt(sum2 / cnt) : kPi, 10 * kPi / 180, kPi);
-  const double cos_w = std::cos(r.window), sin_w = std::sin(r.window);
+  return e;
+}
 
-  sized(r.direction, size_t(nv), Vec3(Vec3::Zero()));
+// Step 4: the edge direction g (restricted to the window around the base direction), the edge
+// intensity, the model's fit error and G = g^T II g. Returns g in the principal frame.
+std::vector<Vec2> edge_model(const ReliefEdgeParams& p, const EdgeFrames& e, ReliefEdgeResult& r) {
+  const Curvature& c = r.curvature;
+  const int nv = static_cast<int>(c.k1.size());
+  const double cos_w = std::cos(r.window), sin_w = std::sin(r.window);
   sized(r.G, size_t(nv));
   sized(r.alpha, size_t(nv));
   sized(r.fit_error, size_t(nv));
@@ -149,68 +154,59 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
   for (int v = 0; v < nv; ++v) {
     const CurvatureDerivative form = edge_correlation_form(c.dcurv[v]);
     const CubicHarmonics hh(form);
-    Vec2 g = best[v];
-    if (p.restrict_orientation && strong_base[v] && r.window < kPi) {
+    Vec2 g = e.best[v];
+    if (p.restrict_orientation && e.strong_base[v] && r.window < kPi) {
       Vec2 m[3];
       int k = cubic_form_maxima(form, m);
-      g = restricted_direction(hh, m, k, base[v], cos_w, sin_w);
+      g = restricted_direction(hh, m, k, e.base[v], cos_w, sin_w);
     }
     const double f = hh.f(g.x(), g.y());
     r.alpha[v] = f / kA;
-    r.fit_error[v] = edge_fit_error(c.dcurv[v], c.k1[v], c.k2[v], f, radius);
+    r.fit_error[v] = edge_fit_error(c.dcurv[v], c.k1[v], c.k2[v], f, r.fit_radius);
     g2[v] = g;
     r.G[v] = c.k1[v] * g.x() * g.x() + c.k2[v] * g.y() * g.y();
   }
+  return g2;
+}
 
-  // Edge smoothing (eq. 4.18): smooth G, then recover directions giving the smoothed value,
-  // nearest to the current ones; where none exists, the nearest value.
-  if (r.edge_smoothing > 0) {
-    if (p.progress) p.progress(88, "Edge smoothing");
-    std::vector<double> Gs = r.G;
-    diffuse(mesh, r.topology->ring, r.edge_smoothing, Gs);
+// Step 5, edge smoothing (eq. 4.18): smooth G, then recover directions giving the smoothed value,
+// nearest to the current ones; where none exists, the nearest value.
+void smooth_edges(const TriMesh& mesh, std::vector<Vec2>& g2, ReliefEdgeResult& r) {
+  const Curvature& c = r.curvature;
+  const int nv = static_cast<int>(c.k1.size());
+  std::vector<double> Gs = r.G;
+  diffuse(mesh, r.topology->ring, r.edge_smoothing, Gs);
 #pragma omp parallel for schedule(static)
-    for (int v = 0; v < nv; ++v) {
-      const double k1 = c.k1[v], k2 = c.k2[v];
-      Vec2 g = g2[v];
-      if (k1 - k2 > 1e-12 * (std::abs(k1) + std::abs(k2))) {
-        double c2 = std::clamp((Gs[v] - k2) / (k1 - k2), 0.0, 1.0);
-        double cs = std::sqrt(c2), sn = std::sqrt(1 - c2);
-        Vec2 cand(std::copysign(cs, g.x()), std::copysign(sn, g.y()));  // the candidate nearest g
-        // Where the smoothed value is out of reach the nearest direction is a principal one,
-        // which can be far from g; a turn of more than the consistency angle would break the
-        // curve there, so such vertices keep their direction.
-        if (cand.dot(g) >= kCosMaxTurn || (Gs[v] >= k2 && Gs[v] <= k1)) {
-          g = cand;
-          r.G[v] = k1 * c2 + k2 * (1 - c2);
-        }
+  for (int v = 0; v < nv; ++v) {
+    const double k1 = c.k1[v], k2 = c.k2[v];
+    Vec2 g = g2[v];
+    if (k1 - k2 > 1e-12 * (std::abs(k1) + std::abs(k2))) {
+      double c2 = std::clamp((Gs[v] - k2) / (k1 - k2), 0.0, 1.0);
+      double cs = std::sqrt(c2), sn = std::sqrt(1 - c2);
+      Vec2 cand(std::copysign(cs, g.x()), std::copysign(sn, g.y()));  // the candidate nearest g
+      // Where the smoothed value is out of reach the nearest direction is a principal one,
+      // which can be far from g; a turn of more than the consistency angle would break the
+      // curve there, so such vertices keep their direction.
+      if (cand.dot(g) >= kCosMaxTurn || (Gs[v] >= k2 && Gs[v] <= k1)) {
+        g = cand;
+        r.G[v] = k1 * c2 + k2 * (1 - c2);
       }
-      g2[v] = g;
     }
+    g2[v] = g;
   }
-#pragma omp parallel for schedule(static)
-  for (int v = 0; v < nv; ++v) r.direction[v] = g2[v].x() * c.dir1[v] + g2[v].y() * c.dir2[v];
+}
 
-  // Relief edge points: zeros of G along g; strength = angle between surface and base normal.
-  if (p.progress) p.progress(93, "Relief edge points");
-  DirectionalFieldView f;
-  f.direction = r.direction.data();
-  f.value = r.G.data();
-  f.strength = r.angle.data();
-  f.size = size_t(nv);
-  f.axial = false;
-  f.value_along = [&c](int v, const Vec3& t) { return c.normal_curvature(v, t); };
-  Polylines all = extract_zero_crossings(mesh, c.normal, f, ZeroCrossingOptions{});
-
-  // Hysteresis thresholds on the angle: automatic from the crossings (the same rule as for
-  // demarcating curves; angles are scale-free), and above the tilt that the estimated noise alone
-  // gives after the same pre-smoothing (noise_tilt). The thesis' fixed 11 degrees (used before)
-  // kept 10 % noise out at one edge length of smoothing but lost the coin's lettering, which
-  // tilts by 4-10 degrees; the weak threshold is half the strong one.
-  // The crossings' percentile is taken over those above the noise's tilt: on a finely meshed
-  // noisy scan the noise's crossings outnumber the relief's and pulled the percentile (and with
-  // it the threshold, to 1.2 degrees at 1 M faces) down to where the feet and tops of the steps
-  // passed as edges.
-  r.noise_angle = noise_tilt(r.noise, r.presmoothing / h, noise_patch_cells(mesh.n_faces()));
+// Step 6: the hysteresis thresholds on the tilt. Automatic from the crossings (the same rule as
+// for demarcating curves; angles are scale-free), and above the tilt that the estimated noise
+// alone gives after the same pre-smoothing (noise_tilt). The thesis' fixed 11 degrees (used
+// before) kept 10 % noise out at one edge length of smoothing but lost the coin's lettering, which
+// tilts by 4-10 degrees; the weak threshold is half the strong one.
+// The crossings' percentile is taken over those above the noise's tilt: on a finely meshed noisy
+// scan the noise's crossings outnumber the relief's and pulled the percentile (and with it the
+// threshold, to 1.2 degrees at 1 M faces) down to where the feet and tops of the steps passed as
+// edges.
+void tilt_thresholds(const TriMesh& mesh, const ReliefEdgeParams& p, const Polylines& all, ReliefEdgeResult& r) {
+  r.noise_angle = noise_tilt(r.noise, r.presmoothing / r.scale.edge, noise_patch_cells(mesh.n_faces()));
   std::vector<double> above_noise;
   for (const auto& sg : all.segments) {
     const double a = 0.5 * (all.strength[sg[0]] + all.strength[sg[1]]);
@@ -221,7 +217,13 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
       automatic_curve_threshold(median_positive(counted_values(r.angle, r.scale.counts)), std::move(above_noise));
   r.strong_angle = p.strong_angle > 0 ? p.strong_angle : std::max(r.automatic_angle, r.noise_angle);
   r.weak_angle = p.weak_angle_h > 0 ? p.weak_angle_h : 0.5 * r.strong_angle;
-  std::vector<double> err = interpolate_at_points(all, r.fit_error);
+}
+
+// Step 7: two-dimensional hysteresis (fit error and tilt), then the gaps it leaves are bridged —
+// pieces whose ends face each other across a small gap are joined (on the coin the share of curve
+// length in pieces under 10 edge lengths fell from 0.60) — and short fragments dropped.
+void select_edges(const ReliefEdgeParams& p, const Polylines& all, ReliefEdgeResult& r) {
+  const std::vector<double> err = interpolate_at_points(all, r.fit_error);
   const size_t ns = all.segments.size();
   std::vector<char> strong(ns), weak(ns);
   for (size_t k = 0; k < ns; ++k) {
@@ -230,30 +232,52 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
     strong[k] = e <= p.strong_error && a >= r.strong_angle;
     weak[k] = e <= p.weak_error && a >= r.weak_angle;
   }
-  // Grow from strong segments through weak ones sharing curve points.
-  std::vector<std::vector<int>> at_point(all.points.size());
-  for (size_t k = 0; k < ns; ++k)
-    for (int e = 0; e < 2; ++e) at_point[all.segments[k][e]].push_back(int(k));
-  std::vector<char> keep(ns, 0);
-  std::vector<int> stack;
-  for (size_t k = 0; k < ns; ++k)
-    if (strong[k] && !keep[k]) {
-      keep[k] = 1;
-      stack.push_back(int(k));
-      while (!stack.empty()) {
-        int s = stack.back();
-        stack.pop_back();
-        for (int e = 0; e < 2; ++e)
-          for (int o : at_point[all.segments[s][e]])
-            if (!keep[o] && (weak[o] || strong[o])) keep[o] = 1, stack.push_back(o);
-      }
-    }
-  Polylines kept = select_segments(all, keep);
-  // Hysteresis leaves the curves broken where a few faces fall short of the weak thresholds or
-  // the direction-consistency rule: pieces whose ends face each other across a small gap are
-  // joined (on the coin the share of curve length in pieces under 10 edge lengths fell from 0.60).
-  r.links = link_gaps(kept, p.link_gap_edges * h, kLinkTurn);
+  Polylines kept = hysteresis(all, strong, weak);
+  r.links = link_gaps(kept, p.link_gap_edges * r.scale.edge, kLinkTurn);
   r.edges = drop_short_chains(kept, r.min_length);
+}
+
+}  // namespace
+
+ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParams& p) {
+  p.validate();
+  require_triangles(mesh);
+  ReliefEdgeResult r;
+  // Step 1: scale, noise, pre-smoothing and curvature with derivatives (shared first stage).
+  static_cast<ScaledCurvature&>(r) = curvature_at_scale(mesh, p.presmoothing, p.estimator, p.progress);
+  resolve_lengths(mesh, p, r);
+  const Curvature& c = r.curvature;
+
+  // Step 2: the base surface's normals.
+  if (p.progress) p.progress(60, "Base normals");
+  BaseNormalOptions bo;
+  bo.scale = r.base_scale;
+  bo.topology = r.topology.get();
+  r.base = estimate_base_normals(mesh, c.normal, bo);
+
+  if (p.progress) p.progress(80, "Edge directions");
+  const EdgeFrames frames = edge_frames(p, r);
+  std::vector<Vec2> g2 = edge_model(p, frames, r);
+  if (r.edge_smoothing > 0) {
+    if (p.progress) p.progress(88, "Edge smoothing");
+    smooth_edges(mesh, g2, r);
+  }
+  sized(r.direction, c.k1.size(), Vec3(Vec3::Zero()));
+#pragma omp parallel for schedule(static)
+  for (int v = 0; v < mesh.n_vertices(); ++v) r.direction[v] = g2[v].x() * c.dir1[v] + g2[v].y() * c.dir2[v];
+
+  // Relief edge points: zeros of G along g; strength = angle between surface and base normal.
+  if (p.progress) p.progress(93, "Relief edge points");
+  DirectionalFieldView f;
+  f.direction = r.direction.data();
+  f.value = r.G.data();
+  f.strength = r.angle.data();
+  f.size = c.k1.size();
+  f.axial = false;
+  f.value_along = [&c](int v, const Vec3& t) { return c.normal_curvature(v, t); };
+  const Polylines all = extract_zero_crossings(mesh, c.normal, f, ZeroCrossingOptions{});
+  tilt_thresholds(mesh, p, all, r);
+  select_edges(p, all, r);
   return r;
 }
 

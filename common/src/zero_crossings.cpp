@@ -30,6 +30,101 @@ struct Crossing {
   int slot;      // index of the owning segment * 2 + end
 };
 
+// Step 1, per face: the vertex directions, values and strengths after the axial flip and the
+// direction-consistency rule (thesis 3.3.2); false when the face is dropped.
+bool consistent_face(const std::vector<Vec3>& normals, const DirectionalFieldView& field, const std::array<int, 3>& f,
+                     double cos_max, Vec3 t[3], double val[3], double str[3]) {
+  const bool has_strength = field.strength != nullptr;
+  for (int j = 0; j < 3; ++j) {
+    t[j] = field.direction[f[j]];
+    val[j] = field.value[f[j]];
+    str[j] = has_strength ? field.strength[f[j]] : 0.0;
+  }
+  if (field.axial)
+    for (int j = 1; j < 3; ++j)
+      if (t[j].dot(t[0]) < 0) {
+        t[j] = -t[j];
+        val[j] = field.value_along(f[j], t[j]);
+        if (has_strength && field.strength_along) str[j] = field.strength_along(f[j], t[j]);
+      }
+  double c01 = t[0].dot(t[1]), c12 = t[1].dot(t[2]), c20 = t[2].dot(t[0]);
+  bool a01 = c01 >= cos_max, a12 = c12 >= cos_max, a20 = c20 >= cos_max;
+  if (a01 && a12 && a20) return true;
+  int odd = -1;  // the vertex re-evaluated in the mean direction of the other two
+  double best = -2;
+  if (a01 && c01 > best) best = c01, odd = 2;
+  if (a12 && c12 > best) best = c12, odd = 0;
+  if (a20 && c20 > best) best = c20, odd = 1;
+  if (odd < 0) return false;
+  int i1 = (odd + 1) % 3, i2 = (odd + 2) % 3;
+  Vec3 mean = t[i1] + t[i2];
+  Vec3 mean_n = normals[f[i1]] + normals[f[i2]];
+  double ml = mean_n.norm();
+  if (!(mean.norm() > 0) || !(ml > 0)) return false;
+  Vec3 d = rotate_between(mean.normalized(), mean_n / ml, normals[f[odd]]);
+  val[odd] = field.value_along(f[odd], d);
+  if (has_strength && field.strength_along) str[odd] = field.strength_along(f[odd], d);
+  return true;
+}
+
+// Step 2, per face: the crossings on its edges, placed by linear interpolation; true when there
+// are exactly two and their values are finite.
+bool face_crossings(const TriMesh& mesh, const std::array<int, 3>& f, const double val[3], const double str[3],
+                    Crossing cr[2]) {
+  int found = 0;
+  for (int j = 0; j < 3; ++j) {
+    int p = (j + 1) % 3, q = (j + 2) % 3;
+    bool sp = val[p] >= 0, sq = val[q] >= 0;
+    if (sp == sq) continue;
+    if (!std::isfinite(val[p]) || !std::isfinite(val[q])) return false;
+    double w = val[p] / (val[p] - val[q]);  // 0 at p, 1 at q
+    uint32_t a = f[p], b = f[q];
+    if (a > b) std::swap(a, b), w = 1 - w, std::swap(p, q);
+    Crossing& c = cr[found < 2 ? found : 1];
+    c.key = (uint64_t(a) << 32) | b;
+    c.p = (1 - w) * mesh.vertices[f[p]] + w * mesh.vertices[f[q]];
+    c.s = (1 - w) * str[p] + w * str[q];
+    c.w = w;
+    ++found;
+  }
+  return found == 2;
+}
+
+// Step 3: the crossings that lie on the same mesh edge become one point. A counting sort on the
+// edge's lower vertex (linear time), then a small sort inside each bucket (its edges and, for a
+// tie, the segment slot, which keeps the result deterministic).
+void merge_crossings(const std::vector<Crossing>& all, int nv, Polylines& res) {
+  std::vector<int> start(size_t(nv) + 1, 0);
+  for (const auto& c : all) ++start[(c.key >> 32) + 1];
+  for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<int> order(all.size());
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (size_t i = 0; i < all.size(); ++i) order[fill[all[i].key >> 32]++] = static_cast<int>(i);
+  }
+  for (int v = 0; v < nv; ++v)
+    if (start[v + 1] - start[v] > 1)
+      std::sort(order.begin() + start[v], order.begin() + start[v + 1], [&all](int x, int y) {
+        return all[x].key != all[y].key ? all[x].key < all[y].key : all[x].slot < all[y].slot;
+      });
+  res.points.reserve(all.size() / 2 + 1);
+  res.strength.reserve(all.size() / 2 + 1);
+  for (size_t i = 0; i < order.size();) {
+    size_t j = i;
+    const Crossing& first = all[order[i]];
+    Vec3 p = Vec3::Zero();
+    double s = 0;
+    while (j < order.size() && all[order[j]].key == first.key) p += all[order[j]].p, s += all[order[j]].s, ++j;
+    int id = static_cast<int>(res.points.size());
+    res.points.push_back(p / double(j - i));
+    res.strength.push_back(s / double(j - i));
+    res.point_edge.push_back({int(first.key >> 32), int(first.key & 0xffffffffu)});
+    res.point_weight.push_back(first.w);
+    for (size_t k = i; k < j; ++k) res.segments[all[order[k]].slot / 2][all[order[k]].slot % 2] = id;
+    i = j;
+  }
+}
+
 }  // namespace
 
 double Polylines::total_length() const {
@@ -104,7 +199,6 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
   if ((int)normals.size() != nv || (int)field.size != nv || !field.direction || !field.value || !field.value_along)
     throw InputError("zero-crossing extraction: per-vertex fields do not match the mesh");
   const double cos_max = std::cos(opt.max_angle);
-  const bool has_strength = field.strength != nullptr;
 
   int nthreads = 1;
 #ifdef _OPENMP
@@ -131,64 +225,12 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
       if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) continue;
       Vec3 t[3];
       double val[3], str[3];
-      for (int j = 0; j < 3; ++j) {
-        t[j] = field.direction[f[j]];
-        val[j] = field.value[f[j]];
-        str[j] = has_strength ? field.strength[f[j]] : 0.0;
+      if (!consistent_face(normals, field, f, cos_max, t, val, str)) {
+        ++rejected;
+        continue;
       }
-      if (field.axial)
-        for (int j = 1; j < 3; ++j)
-          if (t[j].dot(t[0]) < 0) {
-            t[j] = -t[j];
-            val[j] = field.value_along(f[j], t[j]);
-            if (has_strength && field.strength_along) str[j] = field.strength_along(f[j], t[j]);
-          }
-      // Direction consistency (thesis 3.3.2).
-      double c01 = t[0].dot(t[1]), c12 = t[1].dot(t[2]), c20 = t[2].dot(t[0]);
-      bool a01 = c01 >= cos_max, a12 = c12 >= cos_max, a20 = c20 >= cos_max;
-      if (!(a01 && a12 && a20)) {
-        int odd = -1;  // the vertex re-evaluated in the mean direction of the other two
-        double best = -2;
-        if (a01 && c01 > best) best = c01, odd = 2;
-        if (a12 && c12 > best) best = c12, odd = 0;
-        if (a20 && c20 > best) best = c20, odd = 1;
-        if (odd < 0) {
-          ++rejected;
-          continue;
-        }
-        int i1 = (odd + 1) % 3, i2 = (odd + 2) % 3;
-        Vec3 mean = t[i1] + t[i2];
-        Vec3 mean_n = normals[f[i1]] + normals[f[i2]];
-        double ml = mean_n.norm();
-        if (!(mean.norm() > 0) || !(ml > 0)) {
-          ++rejected;
-          continue;
-        }
-        Vec3 d = rotate_between(mean.normalized(), mean_n / ml, normals[f[odd]]);
-        val[odd] = field.value_along(f[odd], d);
-        if (has_strength && field.strength_along) str[odd] = field.strength_along(f[odd], d);
-      }
-      int found = 0;
       Crossing cr[2];
-      for (int j = 0; j < 3; ++j) {
-        int p = (j + 1) % 3, q = (j + 2) % 3;
-        bool sp = val[p] >= 0, sq = val[q] >= 0;
-        if (sp == sq) continue;
-        if (!std::isfinite(val[p]) || !std::isfinite(val[q])) {
-          found = -1;
-          break;
-        }
-        double w = val[p] / (val[p] - val[q]);  // 0 at p, 1 at q
-        uint32_t a = f[p], b = f[q];
-        if (a > b) std::swap(a, b), w = 1 - w, std::swap(p, q);
-        Crossing& c = cr[found < 2 ? found : 1];
-        c.key = (uint64_t(a) << 32) | b;
-        c.p = (1 - w) * mesh.vertices[f[p]] + w * mesh.vertices[f[q]];
-        c.s = (1 - w) * str[p] + w * str[q];
-        c.w = w;
-        ++found;
-      }
-      if (found != 2) continue;
+      if (!face_crossings(mesh, f, val, str, cr)) continue;
       if (opt.accept_face && !opt.accept_face(fi, val, t)) continue;
       if (opt.all_strengths) strengths[tid].push_back(0.5 * (cr[0].s + cr[1].s));
       if (0.5 * (cr[0].s + cr[1].s) < opt.min_strength) continue;
@@ -222,95 +264,8 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
     seg_base += static_cast<int>(seg_faces[t].size());
   }
   res.segments.assign(seg_base, {0, 0});
-  // Merge the crossings that lie on the same mesh edge: a counting sort on the edge's lower
-  // vertex (linear time), then a small sort inside each bucket (its edges and, for a tie, the
-  // segment slot, which keeps the result deterministic).
-  std::vector<int> start(size_t(nv) + 1, 0);
-  for (const auto& c : all) ++start[(c.key >> 32) + 1];
-  for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
-  std::vector<int> order(all.size());
-  {
-    std::vector<int> fill(start.begin(), start.end() - 1);
-    for (size_t i = 0; i < all.size(); ++i) order[fill[all[i].key >> 32]++] = static_cast<int>(i);
-  }
-  for (int v = 0; v < nv; ++v)
-    if (start[v + 1] - start[v] > 1)
-      std::sort(order.begin() + start[v], order.begin() + start[v + 1], [&all](int x, int y) {
-        return all[x].key != all[y].key ? all[x].key < all[y].key : all[x].slot < all[y].slot;
-      });
-  res.points.reserve(all.size() / 2 + 1);
-  res.strength.reserve(all.size() / 2 + 1);
-  for (size_t i = 0; i < order.size();) {
-    size_t j = i;
-    const Crossing& first = all[order[i]];
-    Vec3 p = Vec3::Zero();
-    double s = 0;
-    while (j < order.size() && all[order[j]].key == first.key) p += all[order[j]].p, s += all[order[j]].s, ++j;
-    int id = static_cast<int>(res.points.size());
-    res.points.push_back(p / double(j - i));
-    res.strength.push_back(s / double(j - i));
-    res.point_edge.push_back({int(first.key >> 32), int(first.key & 0xffffffffu)});
-    res.point_weight.push_back(first.w);
-    for (size_t k = i; k < j; ++k) res.segments[all[order[k]].slot / 2][all[order[k]].slot % 2] = id;
-    i = j;
-  }
+  merge_crossings(all, nv, res);
   return res;
-}
-
-Polylines select_segments(const Polylines& in, const std::vector<char>& keep_segment) {
-  Polylines out;
-  out.rejected_faces = in.rejected_faces;
-  std::vector<int> remap(in.points.size(), -1);
-  for (size_t k = 0; k < in.segments.size(); ++k) {
-    if (!keep_segment[k]) continue;
-    std::array<int, 2> s;
-    for (int e = 0; e < 2; ++e) {
-      int p = in.segments[k][e];
-      if (remap[p] < 0) {
-        remap[p] = static_cast<int>(out.points.size());
-        out.points.push_back(in.points[p]);
-        out.strength.push_back(in.strength[p]);
-        if (!in.point_edge.empty()) {
-          out.point_edge.push_back(in.point_edge[p]);
-          out.point_weight.push_back(in.point_weight[p]);
-        }
-      }
-      s[e] = remap[p];
-    }
-    out.segments.push_back(s);
-    out.segment_face.push_back(in.segment_face[k]);
-  }
-  return out;
-}
-
-double automatic_curve_threshold(double noise_scale, const Polylines& all) {
-  std::vector<double> st;
-  st.reserve(all.segments.size());
-  for (const auto& sg : all.segments) st.push_back(0.5 * (all.strength[sg[0]] + all.strength[sg[1]]));
-  return automatic_curve_threshold(noise_scale, std::move(st));
-}
-
-double automatic_curve_threshold(double noise_scale, std::vector<double> st) {
-  // Segments of negative strength (a ridge where k1 < 0) are no candidates at all.
-  st.erase(std::remove_if(st.begin(), st.end(), [](double x) { return !(x >= 0); }), st.end());
-  double top = 0;
-  if (!st.empty()) {
-    auto k = st.begin() + static_cast<long>(kTopPercentile * double(st.size() - 1));
-    std::nth_element(st.begin(), k, st.end());
-    top = *k;
-  }
-  return std::max(kNoiseFactor * noise_scale, kTopFactor * top);
-}
-
-double median_positive(const std::vector<double>& values) {
-  std::vector<double> s;
-  s.reserve(values.size());
-  for (double x : values)
-    if (std::isfinite(x) && x > 0) s.push_back(x);
-  if (s.empty()) return 0;
-  auto mid = s.begin() + s.size() / 2;
-  std::nth_element(s.begin(), mid, s.end());
-  return *mid;
 }
 
 std::vector<double> interpolate_at_points(const Polylines& c, const std::vector<double>& f) {
@@ -318,111 +273,6 @@ std::vector<double> interpolate_at_points(const Polylines& c, const std::vector<
   for (size_t i = 0; i < c.points.size() && i < c.point_edge.size(); ++i)
     out[i] = (1 - c.point_weight[i]) * f[c.point_edge[i][0]] + c.point_weight[i] * f[c.point_edge[i][1]];
   return out;
-}
-
-Polylines keep_strong_segments(const Polylines& in, double min_strength) {
-  std::vector<char> keep(in.segments.size());
-  for (size_t k = 0; k < in.segments.size(); ++k)
-    keep[k] = 0.5 * (in.strength[in.segments[k][0]] + in.strength[in.segments[k][1]]) >= min_strength;
-  return select_segments(in, keep);
-}
-
-Polylines drop_short_chains(const Polylines& in, double min_length) {
-  if (!(min_length > 0)) return in;
-  std::vector<char> keep_point(in.points.size(), 0);
-  for (const auto& ch : in.chains()) {
-    double L = 0;
-    for (size_t k = 1; k < ch.size(); ++k) L += (in.points[ch[k]] - in.points[ch[k - 1]]).norm();
-    if (L >= min_length)
-      for (int p : ch) keep_point[p] = 1;
-  }
-  std::vector<char> keep(in.segments.size());
-  for (size_t k = 0; k < in.segments.size(); ++k)
-    keep[k] = keep_point[in.segments[k][0]] && keep_point[in.segments[k][1]];
-  return select_segments(in, keep);
-}
-
-int link_gaps(Polylines& c, double max_gap, double max_turn) {
-  if (!(max_gap > 0) || c.segments.empty()) return 0;
-  const int np = static_cast<int>(c.points.size());
-  std::vector<int> deg(np, 0), seg_of(np, -1);
-  for (int k = 0; k < static_cast<int>(c.segments.size()); ++k)
-    for (int e : c.segments[k]) ++deg[e], seg_of[e] = k;
-  // Ends of open chains: their chain, its length, and the outward direction near the end.
-  struct End {
-    int point, chain;
-    Vec3 out;
-  };
-  std::vector<End> ends;
-  std::vector<double> chain_length;
-  const auto chains = c.chains();
-  for (int ci = 0; ci < static_cast<int>(chains.size()); ++ci) {
-    const auto& ch = chains[ci];
-    double L = 0;
-    for (size_t i = 1; i < ch.size(); ++i) L += (c.points[ch[i]] - c.points[ch[i - 1]]).norm();
-    chain_length.push_back(L);
-    if (ch.size() < 2 || ch.front() == ch.back()) continue;
-    for (int side = 0; side < 2; ++side) {
-      const int n = static_cast<int>(ch.size());
-      const int p = side == 0 ? ch.front() : ch.back();
-      if (deg[p] != 1) continue;
-      // Walk back along the chain up to max_gap for a stable direction.
-      Vec3 tip = c.points[p], back = tip;
-      double walked = 0;
-      for (int i = 1; i < n && walked < max_gap; ++i) {
-        const Vec3& q = c.points[side == 0 ? ch[i] : ch[n - 1 - i]];
-        walked += (q - back).norm();
-        back = q;
-      }
-      Vec3 out = tip - back;
-      if (out.norm() > 0) ends.push_back({p, ci, out.normalized()});
-    }
-  }
-  if (ends.size() < 2) return 0;
-  // Candidate pairs through a grid of cell max_gap.
-  auto cell = [max_gap](const Vec3& x) {
-    return std::array<long long, 3>{static_cast<long long>(std::floor(x.x() / max_gap)),
-                                    static_cast<long long>(std::floor(x.y() / max_gap)),
-                                    static_cast<long long>(std::floor(x.z() / max_gap))};
-  };
-  std::vector<std::pair<std::array<long long, 3>, int>> grid;
-  for (int i = 0; i < static_cast<int>(ends.size()); ++i) grid.push_back({cell(c.points[ends[i].point]), i});
-  std::sort(grid.begin(), grid.end());
-  const double cos_turn = std::cos(max_turn);
-  std::vector<std::tuple<double, int, int>> pairs;
-  for (int i = 0; i < static_cast<int>(ends.size()); ++i) {
-    const Vec3& pi = c.points[ends[i].point];
-    const auto ci = cell(pi);
-    for (long long dx = -1; dx <= 1; ++dx)
-      for (long long dy = -1; dy <= 1; ++dy)
-        for (long long dz = -1; dz <= 1; ++dz) {
-          const std::array<long long, 3> key{ci[0] + dx, ci[1] + dy, ci[2] + dz};
-          auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(key, -1));
-          for (; it != grid.end() && it->first == key; ++it) {
-            const int j = it->second;
-            if (j <= i) continue;
-            const Vec3 d = c.points[ends[j].point] - pi;
-            const double dist = d.norm();
-            if (!(dist <= max_gap)) continue;
-            if (ends[i].chain == ends[j].chain && chain_length[ends[i].chain] <= 4 * max_gap) continue;
-            if (dist > 0 && (ends[i].out.dot(d) < cos_turn * dist || ends[j].out.dot(-d) < cos_turn * dist)) continue;
-            if (ends[i].out.dot(-ends[j].out) < cos_turn) continue;  // the two ends must face each other
-            pairs.emplace_back(dist, i, j);
-          }
-        }
-  }
-  std::sort(pairs.begin(), pairs.end());
-  std::vector<char> used(ends.size(), 0);
-  int links = 0;
-  for (const auto& [dist, i, j] : pairs) {
-    if (used[i] || used[j]) continue;
-    used[i] = used[j] = 1;
-    const int a = ends[i].point, b = ends[j].point;
-    c.segments.push_back({a, b});
-    c.segment_face.push_back(c.segment_face[seg_of[a]]);
-    ++links;
-  }
-  return links;
 }
 
 }  // namespace reliefkit

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "reliefkit/curve_selection.h"
 #include "reliefkit/demarcating.h"
 #include "reliefkit/relief_edges.h"
 #include "reliefkit/curvature.h"

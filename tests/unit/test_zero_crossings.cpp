@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "reliefkit/curve_selection.h"
 #include "reliefkit/zero_crossings.h"
 #include "shapes.h"
 

@@ -56,7 +56,7 @@ Polylines demarcating_curves(const TriMesh& mesh, const Curvature& curvature, co
 
 /// The whole method with the defaults users get from the filter. Lengths are multiples of the
 /// scan's typical edge length (MeshScale::edge), so the same parameters suit any unit.
-/// The automatic strength threshold is reliefkit::automatic_curve_threshold() (zero_crossings.h)
+/// The automatic strength threshold is reliefkit::automatic_curve_threshold() (curve_selection.h)
 /// with the median vertex strength (over the vertices that count, MeshScale) as noise scale.
 struct DemarcatingParams {
   static constexpr double kDefaultRelativeThreshold = 1.0;  // x automatic threshold
