@@ -114,10 +114,8 @@ void DemarcatingParams::validate() const {
 }
 
 DemarcatingResult compute_demarcating(const TriMesh& mesh, const DemarcatingParams& p) {
-  p.validate();
-  require_triangles(mesh);
   DemarcatingResult r;
-  static_cast<ScaledCurvature&>(r) = curvature_at_scale(mesh, p.presmoothing, p.estimator, p.progress);
+  static_cast<ScaledCurvature&>(r) = begin_curve_filter(mesh, p);
   r.min_length = p.min_length_edges * r.scale.edge;
   if (p.progress) p.progress(85, "Curvature gradient");
   r.gradient = curvature_gradient(r.curvature);

@@ -240,11 +240,9 @@ void select_edges(const ReliefEdgeParams& p, const Polylines& all, ReliefEdgeRes
 }  // namespace
 
 ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParams& p) {
-  p.validate();
-  require_triangles(mesh);
   ReliefEdgeResult r;
   // Step 1: scale, noise, pre-smoothing and curvature with derivatives (shared first stage).
-  static_cast<ScaledCurvature&>(r) = curvature_at_scale(mesh, p.presmoothing, p.estimator, p.progress);
+  static_cast<ScaledCurvature&>(r) = begin_curve_filter(mesh, p);
   resolve_lengths(mesh, p, r);
   const Curvature& c = r.curvature;
 

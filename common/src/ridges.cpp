@@ -53,10 +53,8 @@ void RidgeValleyParams::validate() const {
 }
 
 RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyParams& p) {
-  p.validate();
-  require_triangles(mesh);
   RidgeValleyResult r;
-  static_cast<ScaledCurvature&>(r) = curvature_at_scale(mesh, p.presmoothing, p.estimator, p.progress);
+  static_cast<ScaledCurvature&>(r) = begin_curve_filter(mesh, p);
   r.min_length = p.min_length_edges * r.scale.edge;
   if (p.progress) p.progress(90, "Ridges and valleys");
   std::vector<double> kmax(r.curvature.k1.size()), kmin(r.curvature.k2.size());

@@ -94,6 +94,15 @@ struct ScaledCurvature {
 ScaledCurvature curvature_at_scale(const TriMesh& mesh, const Length& presmoothing, CurvatureEstimator estimator,
                                    Progress progress);
 
+/// The start every curve filter shares: its parameters checked (Params::validate), the mesh
+/// checked, then curvature_at_scale with the parameters' pre-smoothing, estimator and progress.
+template <class Params>
+ScaledCurvature begin_curve_filter(const TriMesh& mesh, const Params& params) {
+  params.validate();
+  require_triangles(mesh);
+  return curvature_at_scale(mesh, params.presmoothing, params.estimator, params.progress);
+}
+
 /// The width of the surface's features (mesh units), from the curvature itself: the ratio of the
 /// 99th percentiles of |curvature| (max |k1|, |k2|) and of the size of the derivative tensor C
 /// over the vertices that count and are not on a boundary. For a smoothed step of width w
