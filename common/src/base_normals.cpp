@@ -16,17 +16,6 @@ double automatic_base_scale(const MeshScale& s) {
 
 double default_base_scale(const TriMesh& mesh) { return automatic_base_scale(mesh_scale(mesh)); }
 
-namespace {
-// Diagonal-preconditioned conjugate gradients need about sqrt(condition number) iterations; the
-// heat step's condition number is about 1 + t |L_vv| / M_v (median over the vertices). Measured
-// (build/bench/bench_solvers, bench_curves): 467 iterations at 52 edges on the noisy cylinder
-// relief, 391 at 60 edges on the relief torus (1 M faces), 561 at 4 M. A Cholesky factorization
-// costs the same whatever the scale: 3.1 s at 1 M faces, 17 s at 4 M — what conjugate gradients
-// spend on about 400 and 340 iterations. So Cholesky is preferred above 400 predicted iterations,
-// on systems the direct solver takes (kDirectMaxUnknowns).
-constexpr double kIterationsPerRootCondition = 5.5;
-constexpr double kDirectAboveIterations = 400;
-}  // namespace
 
 BaseNormals estimate_base_normals(const TriMesh& mesh, const std::vector<Vec3>& n0, const BaseNormalOptions& opt) {
   require_triangles(mesh);
@@ -42,14 +31,12 @@ BaseNormals estimate_base_normals(const TriMesh& mesh, const std::vector<Vec3>& 
   // either: its row becomes the identity and it keeps its own normal.
   Eigen::SparseMatrix<double>& A = lap.L;
   A *= -t;
-  std::vector<double> condition(nv, 1.0);
 #pragma omp parallel for schedule(static)
   for (int v = 0; v < nv; ++v) {
     const int* cols = A.innerIndexPtr() + A.outerIndexPtr()[v];
     const int len = A.outerIndexPtr()[v + 1] - A.outerIndexPtr()[v];
     double& d = A.valuePtr()[A.outerIndexPtr()[v] + (std::lower_bound(cols, cols + len, v) - cols)];
     if (lap.mass[v] > 0) {
-      condition[v] = 1 + d / lap.mass[v];
       d += lap.mass[v];
     } else {
       d = 1.0;
@@ -62,7 +49,7 @@ BaseNormals estimate_base_normals(const TriMesh& mesh, const std::vector<Vec3>& 
     B.row(v) = (lap.mass[v] > 0 ? lap.mass[v] : 1.0) * n.transpose();
   }
   BaseNormals out;
-  out.expected_iterations = kIterationsPerRootCondition * std::sqrt(percentile(condition, 0.5));
+  out.expected_iterations = predicted_cg_iterations(A, lap.mass);
   SolverOptions so;
   so.method = opt.method;
   so.tolerance = opt.tolerance;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <new>
+#include <vector>
 
 namespace reliefkit {
 
@@ -20,9 +21,15 @@ std::string SolveReport::summary() const {
 
 namespace {
 
+// A symmetric matrix's compressed columns are its compressed rows: the row-major view of the same
+// arrays lets Eigen's sparse products run on every core.
+Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor>> row_major(const Eigen::SparseMatrix<double>& A) {
+  return {A.rows(), A.cols(), A.nonZeros(), A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr()};
+}
+
 double relative_residual(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& X) {
   if (!X.allFinite()) return std::numeric_limits<double>::infinity();
-  const Eigen::MatrixXd R = A * X - B;
+  const Eigen::MatrixXd R = row_major(A) * X - B;
   double worst = 0;
   for (int k = 0; k < B.cols(); ++k) {
     const double b = B.col(k).norm(), r = R.col(k).norm();
@@ -40,8 +47,7 @@ void report_progress(const SolverOptions& o, double share, const char* what) {
 bool iterative(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& X,
                const SolverOptions& o, SolveReport& rep) {
   using RowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
-  Eigen::Map<const RowMajor> Ar(A.rows(), A.cols(), A.nonZeros(), A.outerIndexPtr(), A.innerIndexPtr(),
-                                A.valuePtr());
+  const auto Ar = row_major(A);
   Eigen::ConjugateGradient<RowMajor, Eigen::Lower | Eigen::Upper> cg;  // holds a Ref: no copy of the Map
   cg.setTolerance(o.tolerance);
   cg.setMaxIterations(std::max(1, o.max_iterations));
@@ -98,6 +104,18 @@ bool direct(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, Eige
 }
 
 }  // namespace
+
+double predicted_cg_iterations(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& mass) {
+  constexpr double kIterationsPerRootCondition = 5.5;
+  std::vector<double> ratio;
+  ratio.reserve(size_t(A.rows()));
+  for (int i = 0; i < A.rows() && i < mass.size(); ++i)
+    if (mass[i] > 0) ratio.push_back(A.coeff(i, i) / mass[i]);
+  if (ratio.empty()) return 0;
+  auto mid = ratio.begin() + ratio.size() / 2;
+  std::nth_element(ratio.begin(), mid, ratio.end());
+  return kIterationsPerRootCondition * std::sqrt(std::max(1.0, *mid));
+}
 
 SolveReport solve_spd(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& X,
                       const SolverOptions& o) {

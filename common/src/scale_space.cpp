@@ -1,0 +1,175 @@
+#include "reliefkit/scale_space.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "reliefkit/laplacian.h"
+
+namespace reliefkit {
+
+namespace {
+
+// The symmetric system of one kind of unknowns (interior or boundary-loop vertices): the
+// stiffness restricted to them, the mass, and the stiffness towards the vertices whose positions
+// are known when it is solved.
+struct Block {
+  std::vector<int> vertex;                  // unknown -> mesh vertex
+  Eigen::SparseMatrix<double> K;            // stiffness among the unknowns (positive semi-definite)
+  Eigen::VectorXd mass;                     // per unknown
+  std::vector<std::vector<std::pair<int, double>>> known;  // per unknown: (mesh vertex, weight) of known neighbours
+};
+
+// (M + Δτ K) D = -Δτ (K X_unknown + K_known X_known): the displacement over one step. A keeps K's
+// structure (every row holds its diagonal); only its values change from step to step.
+SolveReport step(const Block& b, double dtau, Eigen::SparseMatrix<double>& A, const std::vector<int>& diagonal,
+                 std::vector<Vec3>& x, const ScaleSpaceOptions& opt) {
+  const int n = static_cast<int>(b.vertex.size());
+  if (n == 0) return {};
+  const Eigen::Index nnz = b.K.nonZeros();
+  const double* k = b.K.valuePtr();
+  double* a = A.valuePtr();
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index i = 0; i < nnz; ++i) a[i] = dtau * k[i];
+  for (int i = 0; i < n; ++i) a[diagonal[i]] += b.mass[i];
+  Eigen::MatrixXd X(n, 3);
+  for (int i = 0; i < n; ++i) X.row(i) = x[b.vertex[i]].transpose();
+  // K is symmetric: its row-major view (the same arrays) multiplies on every core.
+  const Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor>> K(n, n, nnz, b.K.outerIndexPtr(),
+                                                                         b.K.innerIndexPtr(), k);
+  Eigen::MatrixXd B = -dtau * (K * X);
+  for (int i = 0; i < n; ++i)
+    for (const auto& [v, w] : b.known[i]) B.row(i) -= dtau * w * x[v].transpose();
+  SolverOptions so;
+  so.method = opt.method;
+  so.tolerance = opt.tolerance;
+  so.prefer_direct = predicted_cg_iterations(A, b.mass) > kDirectAboveIterations;
+  so.label = "Scale space";
+  Eigen::MatrixXd D;
+  SolveReport rep = solve_spd(A, B, D, so);
+  for (int i = 0; i < n; ++i) x[b.vertex[i]] += D.row(i).transpose();
+  return rep;
+}
+
+// Where each row's diagonal entry sits in the compressed arrays.
+std::vector<int> diagonal_positions(const Eigen::SparseMatrix<double>& K) {
+  std::vector<int> pos(size_t(K.cols()), -1);
+  for (int c = 0; c < K.cols(); ++c)
+    for (int p = K.outerIndexPtr()[c]; p < K.outerIndexPtr()[c + 1]; ++p)
+      if (K.innerIndexPtr()[p] == c) pos[c] = p;
+  return pos;
+}
+
+}  // namespace
+
+ScaleSpaceReport scale_space(const TriMesh& mesh, const std::vector<double>& sigmas, const ScaleSpaceOptions& opt,
+                             const std::function<void(int, const TriMesh&)>& visit) {
+  require_triangles(mesh);
+  for (size_t k = 0; k < sigmas.size(); ++k)
+    if (!(sigmas[k] > 0) || !std::isfinite(sigmas[k]) || (k > 0 && !(sigmas[k] > sigmas[k - 1])))
+      throw InputError("scale space: the scales must be positive, finite and increasing");
+  const int nv = mesh.n_vertices();
+  const MeshTopology own = opt.topology ? MeshTopology() : mesh_topology(mesh);
+  const MeshTopology& topo = opt.topology ? *opt.topology : own;
+  const LaplacianResult lap = cotangent_laplacian(mesh, topo);
+
+  // Who is what: interior (no boundary neighbour, some area), boundary loop (two boundary
+  // neighbours), fixed (the rest).
+  enum Kind : char { kInterior, kLoop, kFixed };
+  std::vector<char> kind(nv, kFixed);
+  std::vector<int> index(nv, -1);
+  Block inner, loop;
+  ScaleSpaceReport report;
+  for (int v = 0; v < nv; ++v) {
+    const int nb = topo.border.offset[v + 1] - topo.border.offset[v];
+    if (nb == 0 && lap.mass[v] > 0) {
+      kind[v] = kInterior, index[v] = int(inner.vertex.size()), inner.vertex.push_back(v);
+    } else if (nb == 2) {
+      kind[v] = kLoop, index[v] = int(loop.vertex.size()), loop.vertex.push_back(v);
+    } else {
+      ++report.fixed_vertices;
+    }
+  }
+  report.boundary_vertices = static_cast<int>(loop.vertex.size());
+
+  // Interior block: K = -L restricted; the weights towards loop and fixed vertices are known terms.
+  {
+    const int n = static_cast<int>(inner.vertex.size());
+    std::vector<Eigen::Triplet<double>> trip;
+    inner.mass.resize(n);
+    inner.known.resize(n);
+    for (int i = 0; i < n; ++i) {
+      const int v = inner.vertex[i];
+      inner.mass[i] = lap.mass[v];
+      for (Eigen::SparseMatrix<double>::InnerIterator it(lap.L, v); it; ++it) {
+        const int u = static_cast<int>(it.row());
+        if (kind[u] == kInterior) trip.emplace_back(i, index[u], -it.value());
+        else inner.known[i].push_back({u, it.value()});
+      }
+    }
+    inner.K.resize(n, n);
+    inner.K.setFromTriplets(trip.begin(), trip.end());
+  }
+  // Loop block: 1-D stiffness along the boundary polylines, weight 1 / edge length, mass half the
+  // adjacent boundary edges.
+  {
+    const int n = static_cast<int>(loop.vertex.size());
+    std::vector<Eigen::Triplet<double>> trip;
+    loop.mass.setZero(n);
+    loop.known.resize(n);
+    for (int i = 0; i < n; ++i) {
+      const int v = loop.vertex[i];
+      double diag = 0;
+      for (int k = topo.border.offset[v]; k < topo.border.offset[v + 1]; ++k) {
+        const int u = topo.border.vertex[k];
+        const double len = (mesh.vertices[v] - mesh.vertices[u]).norm();
+        if (!(len > 0)) continue;
+        loop.mass[i] += 0.5 * len;
+        diag += 1 / len;
+        if (kind[u] == kLoop) trip.emplace_back(i, index[u], -1 / len);
+        else loop.known[i].push_back({u, -1 / len});  // K_known has the sign of the stiffness
+      }
+      trip.emplace_back(i, i, diag);
+      if (!(loop.mass[i] > 0)) loop.mass[i] = 1;  // a loop of coincident points: stays put
+    }
+    loop.K.resize(n, n);
+    loop.K.setFromTriplets(trip.begin(), trip.end());
+  }
+  // In the interior block the known weights were taken from L (positive off the diagonal): turn
+  // them into stiffness entries (-L) like the loop block's.
+  for (auto& row : inner.known)
+    for (auto& kw : row) kw.second = -kw.second;
+
+  inner.K.makeCompressed();
+  loop.K.makeCompressed();
+  Eigen::SparseMatrix<double> inner_A = inner.K, loop_A = loop.K;
+  const std::vector<int> inner_diag = diagonal_positions(inner.K), loop_diag = diagonal_positions(loop.K);
+
+  TriMesh work;
+  work.faces = mesh.faces;
+  work.vertices = mesh.vertices;
+  double tau = 0;
+  const int substeps = std::max(1, opt.substeps);
+  for (size_t level = 0; level < sigmas.size(); ++level) {
+    if (opt.progress) opt.progress(int(100 * level / sigmas.size()), "Scale space");
+    const double target = 0.5 * sigmas[level] * sigmas[level];
+    // `substeps` steps per doubling of the diffusion time (at least that many per level): a level
+    // far above the previous one is not crossed by a few huge steps.
+    const int steps = tau > 0 ? std::max(substeps, int(std::ceil(substeps * std::log2(target / tau)))) : substeps;
+    const double dtau = (target - tau) / steps;
+    for (int s = 0; s < steps; ++s) {
+      for (int which = 0; which < 2; ++which) {  // the loop first: the interior takes it as known
+        const Block& b = which == 0 ? loop : inner;
+        SolveReport rep = step(b, dtau, which == 0 ? loop_A : inner_A, which == 0 ? loop_diag : inner_diag,
+                               work.vertices, opt);
+        if (b.vertex.empty()) continue;
+        report.converged = report.converged && rep.converged;
+        report.solves.push_back(std::move(rep));
+      }
+    }
+    tau = target;
+    visit(static_cast<int>(level), work);
+  }
+  return report;
+}
+
+}  // namespace reliefkit
