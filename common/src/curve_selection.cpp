@@ -123,10 +123,13 @@ int link_gaps(Polylines& c, double max_gap, double max_turn) {
   }
   if (ends.size() < 2) return 0;
   // Candidate pairs through a grid of cell max_gap.
-  auto cell = [max_gap](const Vec3& x) {
-    return std::array<long long, 3>{static_cast<long long>(std::floor(x.x() / max_gap)),
-                                    static_cast<long long>(std::floor(x.y() / max_gap)),
-                                    static_cast<long long>(std::floor(x.z() / max_gap))};
+  // Cell indices clamped: a coordinate 1e30 times the gap must not overflow the integer (fuzzer).
+  auto index = [max_gap](double v) {
+    const double q = std::floor(v / max_gap);
+    return static_cast<long long>(q == q ? std::clamp(q, -1e15, 1e15) : 0.0);
+  };
+  auto cell = [&index](const Vec3& x) {
+    return std::array<long long, 3>{index(x.x()), index(x.y()), index(x.z())};
   };
   std::vector<std::pair<std::array<long long, 3>, int>> grid;
   for (int i = 0; i < static_cast<int>(ends.size()); ++i) grid.push_back({cell(c.points[ends[i].point]), i});
