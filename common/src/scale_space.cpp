@@ -103,7 +103,7 @@ ScaleSpaceReport scale_space(const TriMesh& mesh, const std::vector<double>& sig
       for (Eigen::SparseMatrix<double>::InnerIterator it(lap.L, v); it; ++it) {
         const int u = static_cast<int>(it.row());
         if (kind[u] == kInterior) trip.emplace_back(i, index[u], -it.value());
-        else inner.known[i].push_back({u, it.value()});
+        else inner.known[i].push_back({u, -it.value()});  // a stiffness entry, like the loop block's
       }
     }
     inner.K.resize(n, n);
@@ -134,10 +134,6 @@ ScaleSpaceReport scale_space(const TriMesh& mesh, const std::vector<double>& sig
     loop.K.resize(n, n);
     loop.K.setFromTriplets(trip.begin(), trip.end());
   }
-  // In the interior block the known weights were taken from L (positive off the diagonal): turn
-  // them into stiffness entries (-L) like the loop block's.
-  for (auto& row : inner.known)
-    for (auto& kw : row) kw.second = -kw.second;
 
   inner.K.makeCompressed();
   loop.K.makeCompressed();
