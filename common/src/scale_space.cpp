@@ -50,6 +50,49 @@ SolveReport step(const Block& b, double dtau, Eigen::SparseMatrix<double>& A, co
   return rep;
 }
 
+// n forward-Euler steps of size dtau: X += -dtau M⁻¹ (K X + K_known X_known). Stable (and
+// monotone) for dtau below 1 / gershgorin_bound(b).
+void explicit_steps(const Block& b, double dtau, long long n, std::vector<Vec3>& x, std::vector<Vec3>& d) {
+  const int nu = static_cast<int>(b.vertex.size());
+  if (nu == 0) return;
+  d.resize(size_t(nu));
+  const int* outer = b.K.outerIndexPtr();
+  const int* inner = b.K.innerIndexPtr();
+  const double* k = b.K.valuePtr();
+  for (long long s = 0; s < n; ++s) {
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < nu; ++i) {
+      Vec3 acc = Vec3::Zero();
+      for (int p = outer[i]; p < outer[i + 1]; ++p) acc += k[p] * x[b.vertex[inner[p]]];  // K symmetric: column = row
+      for (const auto& [v, w] : b.known[i]) acc += w * x[v];
+      d[i] = (-dtau / b.mass[i]) * acc;
+    }
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < nu; ++i) x[b.vertex[i]] += d[i];
+  }
+}
+
+// Gershgorin bound on the largest eigenvalue of M⁻¹K: max_i (K_ii + sum_j≠i |K_ij|) / M_i.
+double gershgorin_bound(const Block& b) {
+  double bound = 0;
+  for (int i = 0; i < static_cast<int>(b.vertex.size()); ++i) {
+    double row = 0;
+    for (int p = b.K.outerIndexPtr()[i]; p < b.K.outerIndexPtr()[i + 1]; ++p) row += std::abs(b.K.valuePtr()[p]);
+    bound = std::max(bound, row / b.mass[i]);
+  }
+  return bound;
+}
+
+// Median of K_ii / M_i: with it, predicted_cg_iterations of M + dtau K is 5.5 sqrt(1 + dtau q).
+double median_stiffness(const Block& b) {
+  std::vector<double> q;
+  q.reserve(b.vertex.size());
+  for (int i = 0; i < static_cast<int>(b.vertex.size()); ++i) q.push_back(b.K.coeff(i, i) / b.mass[i]);
+  if (q.empty()) return 0;
+  std::nth_element(q.begin(), q.begin() + q.size() / 2, q.end());
+  return q[q.size() / 2];
+}
+
 // Where each row's diagonal entry sits in the compressed arrays.
 std::vector<int> diagonal_positions(const Eigen::SparseMatrix<double>& K) {
   std::vector<int> pos(size_t(K.cols()), -1);
@@ -143,6 +186,11 @@ ScaleSpaceReport scale_space(const TriMesh& mesh, const std::vector<double>& sig
   TriMesh work;
   work.faces = mesh.faces;
   work.vertices = mesh.vertices;
+  // Cost model of one level, in sparse products: explicit steps need dtau * bound of them;
+  // implicit ones about 2 per conjugate-gradient iteration (capped where Cholesky takes over).
+  const double bound = std::max(gershgorin_bound(inner), gershgorin_bound(loop));
+  const double stiff = std::max(median_stiffness(inner), median_stiffness(loop));
+  std::vector<Vec3> scratch;
   double tau = 0;
   const int substeps = std::max(1, opt.substeps);
   for (size_t level = 0; level < sigmas.size(); ++level) {
@@ -152,15 +200,32 @@ ScaleSpaceReport scale_space(const TriMesh& mesh, const std::vector<double>& sig
     // far above the previous one is not crossed by a few huge steps.
     const int steps = tau > 0 ? std::max(substeps, int(std::ceil(substeps * std::log2(target / tau)))) : substeps;
     const double dtau = (target - tau) / steps;
-    for (int s = 0; s < steps; ++s) {
-      for (int which = 0; which < 2; ++which) {  // the loop first: the interior takes it as known
-        const Block& b = which == 0 ? loop : inner;
-        SolveReport rep = step(b, dtau, which == 0 ? loop_A : inner_A, which == 0 ? loop_diag : inner_diag,
-                               work.vertices, opt);
-        if (b.vertex.empty()) continue;
-        report.converged = report.converged && rep.converged;
-        report.solves.push_back(std::move(rep));
+    const double explicit_cost = std::ceil((target - tau) * bound);
+    const double implicit_cost = steps * 2.0 * std::min(kDirectAboveIterations, 5.5 * std::sqrt(1 + dtau * stiff));
+    const bool use_explicit = opt.stepping == ScaleSpaceOptions::Stepping::Explicit ||
+                              (opt.stepping == ScaleSpaceOptions::Stepping::Auto && explicit_cost <= implicit_cost &&
+                               explicit_cost < 1e7);
+    report.level_explicit.push_back(use_explicit);
+    if (use_explicit) {
+      const long long n = std::max(1LL, static_cast<long long>(explicit_cost));
+      const double h = (target - tau) / double(n);
+      for (long long s = 0; s < n; ++s) {  // the loop first: the interior reads it
+        explicit_steps(loop, h, 1, work.vertices, scratch);
+        explicit_steps(inner, h, 1, work.vertices, scratch);
       }
+      report.explicit_steps += n;
+    } else {
+      for (int s = 0; s < steps; ++s) {
+        for (int which = 0; which < 2; ++which) {  // the loop first: the interior takes it as known
+          const Block& b = which == 0 ? loop : inner;
+          SolveReport rep = step(b, dtau, which == 0 ? loop_A : inner_A, which == 0 ? loop_diag : inner_diag,
+                                 work.vertices, opt);
+          if (b.vertex.empty()) continue;
+          report.converged = report.converged && rep.converged;
+          report.solves.push_back(std::move(rep));
+        }
+      }
+      report.implicit_steps += steps;
     }
     tau = target;
     visit(static_cast<int>(level), work);

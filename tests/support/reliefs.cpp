@@ -185,3 +185,110 @@ Relief discs_on_cylinder_of_size(long faces, const ReliefShape& s) {
 }
 
 }  // namespace rktest
+
+namespace rktest {
+
+std::pair<double, double> axial_line(const AxialFeature& f, int side) {
+  switch (f.kind) {
+    case AxialFeature::Ridge: return {f.arc, 1 + f.depth};
+    case AxialFeature::Valley: return {f.arc, 1 - f.depth};
+    case AxialFeature::Band: break;
+  }
+  return {f.arc + side * f.band, 1 + 0.5 * f.depth};
+}
+
+AxialCylinder axial_cylinder(const std::vector<AxialFeature>& features, int nu, double length, double noise,
+                             double jitter, uint32_t seed) {
+  AxialCylinder c;
+  c.features = features;
+  c.length = length;
+  const int nz = std::max(2, int(std::lround(length / (2 * M_PI / nu))));
+  c.mesh = cylinder(1.0, length, nu, nz, jitter, seed);
+  auto height = [&](double arc) {
+    double z = 0;
+    for (const auto& f : features) {
+      const double x = std::remainder(arc - f.arc, 2 * M_PI);
+      switch (f.kind) {
+        case AxialFeature::Ridge: z += f.depth * std::exp(-x * x / (2 * f.width * f.width)); break;
+        case AxialFeature::Valley: z -= f.depth * std::exp(-x * x / (2 * f.width * f.width)); break;
+        case AxialFeature::Band: z += f.depth * step(x, f.width) * step(f.band - x, f.width); break;
+      }
+    }
+    return z;
+  };
+  std::vector<Vec3> normal;
+  for (auto& p : c.mesh.vertices) {
+    const double u = std::atan2(p.y(), p.x());
+    const Vec3 n(std::cos(u), std::sin(u), 0);
+    normal.push_back(n);
+    p += n * height(u);
+  }
+  c.edge = reliefkit::edge_length_stats(c.mesh).mean;
+  Rng rng(seed * 7919 + 13);
+  for (size_t i = 0; i < c.mesh.vertices.size(); ++i) c.mesh.vertices[i] += normal[i] * (noise * c.edge * rng.normal());
+  return c;
+}
+
+AxialScore score_axial(const AxialCylinder& c, const reliefkit::Polylines& curves,
+                       const std::vector<AxialFeature::Kind>& kinds, double tol, double margin) {
+  struct Line { int feature; Vec3 at; };  // the line's point at z = 0; feature -1: precision only
+  std::vector<Line> lines;
+  auto wanted = [&](AxialFeature::Kind k) { return std::find(kinds.begin(), kinds.end(), k) != kinds.end(); };
+  auto add = [&](int feature, double arc, double r) { lines.push_back({feature, Vec3(r * std::cos(arc), r * std::sin(arc), 0)}); };
+  for (int i = 0; i < static_cast<int>(c.features.size()); ++i) {
+    const AxialFeature& f = c.features[i];
+    if (wanted(f.kind))
+      for (int side = 0; side < (f.kind == AxialFeature::Band ? 2 : 1); ++side) {
+        const auto [arc, r] = axial_line(f, side);
+        add(i, arc, r);
+      }
+    // A Gaussian valley's banks are ridges of the surface (and a ridge's feet valleys): on the
+    // clean surface at ±√3 widths, where the curvature of the opposite sign peaks, and further
+    // out the more the detector smooths (at ±3 widths after smoothing by the optimal scale, √2
+    // widths). Curves of the opposite kind anywhere in that band are true curves, not false ones.
+    const bool banks = (f.kind == AxialFeature::Valley && wanted(AxialFeature::Ridge)) ||
+                       (f.kind == AxialFeature::Ridge && wanted(AxialFeature::Valley));
+    if (banks) {
+      const double r = 1 + (f.kind == AxialFeature::Ridge ? 1 : -1) * f.depth * std::exp(-1.5);
+      for (double side : {-1.0, 1.0})
+        for (double at = std::sqrt(3.0) * f.width; at <= 3 * f.width + 0.5 * tol; at += 0.5 * tol)
+          add(-1, f.arc + side * at, r);
+    }
+  }
+  const double zmax = 0.5 * c.length - margin;
+  const int bins = std::max(8, int(2 * zmax / c.edge));  // one per edge length
+  auto bin_of = [&](double z) { return std::clamp(int((z + zmax) / (2 * zmax) * bins), 0, bins - 1); };
+  std::vector<std::vector<char>> hit(lines.size(), std::vector<char>(bins, 0));
+  AxialScore s;
+  double good = 0, total = 0;
+  for (const auto& seg : curves.segments) {
+    const Vec3 &a = curves.points[seg[0]], &b = curves.points[seg[1]];
+    for (int k = 0; k < 4; ++k) {
+      const Vec3 p = a + (b - a) * ((k + 0.5) / 4);
+      if (std::abs(p.z()) > zmax) continue;
+      const double len = 0.25 * (b - a).norm();
+      total += len;
+      bool near = false;
+      for (size_t l = 0; l < lines.size(); ++l) {
+        const double d = std::hypot(p.x() - lines[l].at.x(), p.y() - lines[l].at.y());
+        if (d <= tol) near = true, hit[l][bin_of(p.z())] = 1;
+      }
+      if (near) good += len;
+    }
+  }
+  s.length = total;
+  s.precision = total > 0 ? good / total : 0;
+  s.recall.assign(c.features.size(), 0.0);
+  std::vector<int> parts(c.features.size(), 0);
+  for (size_t l = 0; l < lines.size(); ++l) {
+    if (lines[l].feature < 0) continue;
+    const double share = std::count(hit[l].begin(), hit[l].end(), 1) / double(bins);
+    s.recall[lines[l].feature] += share;
+    ++parts[lines[l].feature];
+  }
+  for (size_t i = 0; i < parts.size(); ++i)
+    if (parts[i] > 0) s.recall[i] /= parts[i];
+  return s;
+}
+
+}  // namespace rktest

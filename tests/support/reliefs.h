@@ -50,3 +50,47 @@ struct Detection {
 Detection score(const Relief& r, const reliefkit::Polylines& curves, double tolerance);
 
 }  // namespace rktest
+
+namespace rktest {
+
+/// Features running along the axis of a cylinder of radius 1 (the thesis' quantitative experiment
+/// of sect. 5.5.1, harder): Gaussian ridges / valleys, height ± depth exp(-x² / 2 width²) at arc
+/// distance x from their line, or raised bands with tanh edges of the given width.
+struct AxialFeature {
+  enum Kind { Ridge, Valley, Band } kind;
+  double arc;    // arc length of the line (band: of its first edge)
+  double width;  // Gaussian standard deviation, or tanh width of the band's edges
+  double depth;  // > 0: the ridge's height, the valley's depth, the band's height
+  double band = 0;  // band: arc length between its two edges
+  int group = 0;    // the test's own class (fine / coarse)
+};
+
+struct AxialCylinder {
+  reliefkit::TriMesh mesh;
+  double edge = 0;    // mean edge length
+  double length = 0;  // along the axis
+  std::vector<AxialFeature> features;
+};
+
+/// The cylinder meshed with `nu` cells around and square-ish cells along `length`, jittered, with
+/// Gaussian noise of `noise` mean edge lengths along the normal.
+AxialCylinder axial_cylinder(const std::vector<AxialFeature>& features, int nu, double length, double noise,
+                             double jitter = 0.3, uint32_t seed = 1);
+
+/// The 3-D line of a feature's curve: the ridge's crest, the valley's bottom, the band edge's
+/// mid-height (first edge: side = 0, second: side = 1); as (angle, radius).
+std::pair<double, double> axial_line(const AxialFeature& f, int side = 0);
+
+struct AxialScore {
+  std::vector<double> recall;  // per feature (a band: both edges), share of its length with a curve point within tol
+  double precision = 0;        // share of the curves' length within tol of a true curve of the given kinds
+                               // (the features' lines, and the banks of Gaussian valleys / feet of ridges,
+                               // ridges / valleys of the surface too, between ±√3 and ±3 widths)
+  double length = 0;           // total curve length
+};
+/// Scores curves against the lines of the features of the given kinds; the ends of the cylinder
+/// (within `margin` of the rims) count for neither.
+AxialScore score_axial(const AxialCylinder& c, const reliefkit::Polylines& curves,
+                       const std::vector<AxialFeature::Kind>& kinds, double tol, double margin);
+
+}  // namespace rktest

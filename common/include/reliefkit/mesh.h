@@ -17,6 +17,7 @@ namespace reliefkit {
 
 using Vec3 = Eigen::Vector3d;
 using Vec2 = Eigen::Vector2d;
+using Mat3 = Eigen::Matrix3d;
 
 struct TriMesh {
   std::vector<Vec3> vertices;              // #V positions

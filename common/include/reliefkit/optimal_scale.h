@@ -1,30 +1,125 @@
-// ReliefKit — the optimal scale of every vertex for ridges & valleys (thesis sections 5.3 and
-// 5.5.1): the surface is taken through its scale space (reliefkit/scale_space.h); at each level
-// the strength f = max(|k1|, |k2|) is measured at every vertex, and the scale at which t^γ f
-// peaks is selected (reliefkit/scale_selection.h), t = σ² the Gaussian's variance.
-// For a Gaussian ridge of width s0 (variance s0²) and γ = 1 the selected σ is √2 s0.
-// This is the raw selection (eq. 5.2); filling in featureless regions (eq. 5.3) comes next.
+// ReliefKit — the optimal scale of every vertex and the optimally smoothed surface (thesis
+// chapter 5, sections 5.3–5.5).
+//
+// 1. Scale space (reliefkit/scale_space.h): the surface diffused to Gaussian scales σ from
+//    `min_scale_edges` to `max_scale_edges` edge lengths, `levels_per_octave` per doubling.
+// 2. Strength f per vertex and level: ridges & valleys f = max(|k1|, |k2|) (sect. 5.5.1) of the
+//    feature alone — the shape operator minus that of the base surface (the surface at twice the
+//    largest scale), since on a curved object the base's own curvature makes t^γ |k| grow without
+//    bound;
+//    relief edges f = the curvature derivative across the edge, max over directions u of
+//    C(u, u, u) (sect. 5.5.2). The selected scale is where t^γ f peaks, t = σ² (eq. 5.2), refined
+//    in log t (reliefkit/scale_selection.h). The argmax does not change when f is multiplied by a
+//    constant and the levels are edge-length multiples, so the selection is independent of the
+//    mesh's unit and, for relief edges, of the relief's height (eq. 5.15 is not: it assumes a
+//    unit-height step; see scale_selection.h).
+// 2b. Dominant scale: eq. 5.2 at a point on the flank of a groove selects a larger scale than at
+//    its centre (the groove's curvature reaches the flank only when smoothed) and the shoulders
+//    again a smaller one; positions from such different scales side by side drew false ridges
+//    along the flanks (on the test cylinder: at ±6 edge lengths from a valley 4.4 wide, 3.5x as
+//    strong as the threshold). So each vertex takes the selection of the strongest vertex within
+//    `dominant_reach` x that vertex's own scale (its footprint), by bounded propagation.
+// 3. Fill (eq. 5.3): the scale must equal the selection where the strength is high and vary
+//    smoothly elsewhere. Solved for u = log σ as the least-squares problem
+//      min Σ_v m_v ρ_v (u_v − û_v)² + μ uᵀ K u + ε Σ_v m_v (u_v − u_max)²,
+//    m the vertex areas / h², K the cotangent stiffness (the Laplacian of eq. 5.4), ρ_v = (a f̃_v)²
+//    with a f̃_max = 9 the thesis' weight 1 / w = 1 + a f taken above the median strength
+//    (f̃ = max(0, f − median f): the median vertex carries no feature, only noise, whose strength
+//    peaks at the finest level). The ε term sends featureless areas to the largest scale over a
+//    few edge lengths (noise there is smoothed away; no curve is lost, since there is none) and
+//    keeps the system well conditioned. One sparse SPD solve (reliefkit/solvers.h), not SVD.
+// 4. Optimally smoothed surface (sect. 5.4): each vertex takes its position at its own scale
+//    (interpolated in log σ between the two levels around it; the levels' displacements are kept
+//    in single precision), then a light diffusion of `final_smoothing_edges` removes the seams.
 #pragma once
 
 #include <vector>
 
+#include "reliefkit/curvature.h"
 #include "reliefkit/mesh.h"
+#include "reliefkit/scale.h"
+#include "reliefkit/scale_space.h"
+#include "reliefkit/solvers.h"
+#include "reliefkit/zero_crossings.h"
 
 namespace reliefkit {
 
+/// Strengths up to this multiple of the median (the noise's; 90 % of noise vertices on the test
+/// cylinder lie below 1.7x) carry no weight in the fill: isolated noise spikes would otherwise keep
+/// the finest scale, and their noise with it.
+constexpr double kNoiseStrengths = 2.0;
+
+/// A feature centre (a vertex whose selection is the strongest reaching it) must be this many
+/// times the noise's median strength to anchor the scale of its footprint.
+constexpr double kAnchorStrengths = 3.0;
+
+/// Selections within this many rings of a boundary (one-sided neighbourhoods) anchor no scale.
+constexpr int kBorderRings = 3;
+
+/// The object (its largest part's bounding-box diagonal) must span this many smallest scales; the
+/// largest scale is lowered to a this-many-th of it when asked for more (the base surface, at
+/// twice the largest scale, would otherwise smooth the object flat).
+constexpr double kMinObjectScales = 8.0;
+
+enum class ScaleStrength { RidgesValleys, ReliefEdges };
+
 struct OptimalScaleOptions {
-  double min_scale_edges = 1, max_scale_edges = 32;  // the range of σ, in edge lengths
-  int levels_per_octave = 4;                          // scales per doubling of σ
-  double gamma = 1.0;
+  ScaleStrength curve = ScaleStrength::RidgesValleys;
+  double min_scale_edges = 1, max_scale_edges = 16;  // the range of σ, in edge lengths
+  int levels_per_octave = 2;                          // scales per doubling of σ
+  double gamma = 1.0;                                 // both curve types: eq. 5.11 / 5.15 need γ < 1.5 / 1.3
+  double fill_weight = 9.0;                           // a f_max of eq. 5.3
+  double fill_smoothness = 1.0;                       // μ
+  double featureless_pull = 1e-4;                     // ε
+  bool fill = true;                                   // eq. 5.3; false: the raw selection (0 where none)
+  double bank_reach = 4.5;       // a feature's banks lie within this many times its scale (graph distance)
+  double dominant_reach = 3.0;  // a selection covers this many times its scale; 0: per vertex (eq. 5.2 as is)
+  bool smoothed_surface = false;                      // also build the optimally smoothed surface
+  double final_smoothing_edges = 0.5;                 // the light smoothing after assembling it
+  ScaleSpaceOptions::Stepping stepping = ScaleSpaceOptions::Stepping::Auto;
+  const MeshTopology* topology = nullptr;
   Progress progress = nullptr;
+  /// Throws InputError naming the first parameter out of its range.
+  void validate() const;
 };
 
 struct OptimalScale {
-  std::vector<double> sigma;     // #V selected Gaussian scale (mesh units); 0 where no strength at any level
-  std::vector<double> strength;  // #V the normalised strength t^γ f at the selected scale's nearest level
-  std::vector<double> levels;    // the σ of the levels used (mesh units)
+  MeshScale scale;               // the mesh's edge length h, the unit of the options
+  std::vector<double> levels;    // σ of the levels (mesh units)
+  bool max_scale_lowered = false;  // the object is too small for the asked largest scale (kMinObjectScales)
+  std::vector<double> selected;  // #V eq. 5.2's σ (mesh units); 0 where no level has strength
+  std::vector<double> strength;  // #V normalised strength t^γ f at the selection (unit-free: f x h or h²),
+                                 // the dominant one's (dominant_reach)
+  std::vector<double> own_strength;  // #V the vertex's own, before dominance
+  std::vector<signed char> sign;     // #V ridges & valleys: +1 the dominant feature is convex (ridge-like), -1 concave
+  std::vector<double> bank_strength;     // #V the strongest feature within bank_reach x its scale
+  std::vector<signed char> bank_sign;    // #V and its sign
+  std::vector<double> sigma;     // #V the final scale (mesh units): filled (eq. 5.3) or = selected
+  std::vector<Vec3> smoothed;    // #V the optimally smoothed surface, when asked
+  std::vector<Mat3> base_shape;  // #V the base surface's shape operator, with the smoothed surface
+  double strength_floor = 0;     // the median strength (fill: no weight at or below)
+  double strength_ref = 0;       // f_max of eq. 5.3 (99.9th percentile of the strengths)
+  SolveReport fill_solve;
+  ScaleSpaceReport space;
+  ScaleSpaceReport base_space;   // ridges & valleys: the base surface (twice the largest scale)
 };
 
-OptimalScale optimal_scale_ridges(const TriMesh& mesh, const OptimalScaleOptions& options = {});
+OptimalScale optimal_scale(const TriMesh& mesh, const OptimalScaleOptions& options = {});
+
+/// The strength of a level: max(|k1|, |k2|), or max over u of C(u, u, u).
+double ridge_strength(double k1, double k2);
+/// The shape operator k1 d1 d1ᵀ + k2 d2 d2ᵀ of vertex v (world coordinates).
+Mat3 shape_tensor(const Curvature& c, int v);
+/// max |eigenvalue| of (shape operator − base's), restricted to v's tangent plane: the curvature
+/// of the feature alone. On a cylinder of radius R, |k| itself grows t^γ |k| like t / R and the
+/// largest scale won everywhere (every vertex of the test cylinder selected 16 edge lengths).
+double ridge_strength_over_base(const Curvature& c, int v, const Mat3& base);
+/// The same eigenvalue with its sign (> 0 convex).
+double signed_ridge_strength_over_base(const Curvature& c, int v, const Mat3& base);
+double relief_edge_strength(const CurvatureDerivative& C);
+
+/// Curves found on a smoothed copy (same connectivity) placed on `mesh`: each point keeps its edge
+/// and its parameter along it.
+void place_on_mesh(const TriMesh& mesh, Polylines& curves);
 
 }  // namespace reliefkit

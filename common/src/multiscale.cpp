@@ -1,0 +1,113 @@
+#include "reliefkit/multiscale.h"
+
+#include <cmath>
+
+#include "reliefkit/curve_selection.h"
+
+namespace reliefkit {
+
+void normalise_curve_strengths(Polylines& curves, const OptimalScale& scale, double gamma, int power) {
+  const double h = scale.scale.edge;
+  const int np = static_cast<int>(curves.points.size());
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < np; ++i) {
+    const auto [a, b] = curves.point_edge[i];
+    const double w = curves.point_weight[i];
+    (void)w;
+    // The smaller scale of the edge's two ends: where the scale changes quickly (a fine feature
+    // next to smooth ground), the larger one would amplify the finer side's curvature.
+    const double s = std::min(scale.sigma[a], scale.sigma[b]) / h;
+    curves.strength[i] *= std::pow(s * s, gamma) * std::pow(h, power);
+  }
+}
+
+void drop_banks(Polylines& curves, const OptimalScale& scale, int flanked_sign) {
+  if (scale.bank_sign.empty()) return;
+  auto bank = [&](int v) {
+    return scale.bank_sign[v] == flanked_sign && scale.own_strength[v] < kBankRatio * scale.bank_strength[v];
+  };
+  std::vector<char> keep(curves.segments.size(), 1);
+  for (size_t k = 0; k < curves.segments.size(); ++k) {
+    int near_bank = 0;
+    for (int p : curves.segments[k]) {
+      const auto [a, b] = curves.point_edge[p];
+      near_bank += bank(curves.point_weight[p] < 0.5 ? a : b);
+    }
+    keep[k] = near_bank < 2;
+  }
+  curves = select_segments(curves, keep);
+}
+
+namespace {
+
+// The optimal scale with its smoothed surface, as a mesh of the input's connectivity.
+TriMesh optimally_smoothed(const TriMesh& mesh, OptimalScaleOptions& opt, OptimalScale& out) {
+  opt.smoothed_surface = true;
+  out = optimal_scale(mesh, opt);
+  TriMesh smoothed;
+  smoothed.faces = mesh.faces;
+  smoothed.vertices = std::move(out.smoothed);
+  out.smoothed.clear();
+  return smoothed;
+}
+
+}  // namespace
+
+MultiscaleRidgeValleys multiscale_ridges_valleys(const TriMesh& mesh, OptimalScaleOptions opt,
+                                                 RidgeValleyParams params) {
+  params.validate();
+  opt.curve = ScaleStrength::RidgesValleys;
+  MultiscaleRidgeValleys r;
+  TriMesh smoothed = optimally_smoothed(mesh, opt, r.scale);
+  params.presmoothing = Length::in_edges(0);
+  RidgeValleyResult& c = r.curves;
+  static_cast<ScaledCurvature&>(c) = begin_curve_filter(smoothed, params);
+  c.min_length = params.min_length_edges * r.scale.scale.edge;
+  if (params.progress) params.progress(95, "Multi-scale ridges and valleys");
+  // All crossings, their strengths normalised as in the scale selection, so that a fine and a
+  // coarse feature of the same depth compare equal; the automatic threshold then sits above
+  // the noise's normalised strength (the median over the vertices, OptimalScale::strength_floor).
+  for (bool valleys : {false, true}) {
+    Polylines all = ridge_lines(smoothed, c.curvature, valleys, 0.0);
+    // The curvature across the line over the base's (on a curved object the base's own
+    // curvature, times σ², would make every smooth area strong).
+    std::vector<double> feature(static_cast<size_t>(smoothed.n_vertices()));
+    for (int v = 0; v < smoothed.n_vertices(); ++v) {
+      const Vec3& d = valleys ? c.curvature.dir2[v] : c.curvature.dir1[v];
+      const double k = (valleys ? c.curvature.k2[v] : c.curvature.k1[v]) - d.dot(r.scale.base_shape[v] * d);
+      feature[v] = valleys ? -k : k;
+    }
+    for (size_t i = 0; i < all.points.size(); ++i) {
+      const auto [a, b] = all.point_edge[i];
+      all.strength[i] = (1 - all.point_weight[i]) * feature[a] + all.point_weight[i] * feature[b];
+    }
+    normalise_curve_strengths(all, r.scale, opt.gamma, 1);
+    drop_banks(all, r.scale, valleys ? 1 : -1);
+    std::vector<double> seg(all.segments.size());
+    for (size_t k = 0; k < seg.size(); ++k) seg[k] = 0.5 * (all.strength[all.segments[k][0]] + all.strength[all.segments[k][1]]);
+    double strongest = 0;
+    for (double x : seg) strongest = std::max(strongest, x);
+    const double threshold = params.relative_threshold * automatic_curve_threshold(r.scale.strength_floor, seg);
+    Polylines kept = drop_short_chains(keep_strong_segments(all, threshold), c.min_length);
+    place_on_mesh(mesh, kept);
+    (valleys ? c.valleys : c.ridges) = std::move(kept);
+    (valleys ? c.valley_threshold : c.ridge_threshold) = threshold;
+    (valleys ? c.strongest_valley : c.strongest_ridge) = strongest;
+  }
+  r.scale.smoothed = std::move(smoothed.vertices);
+  return r;
+}
+
+MultiscaleReliefEdges multiscale_relief_edges(const TriMesh& mesh, OptimalScaleOptions opt, ReliefEdgeParams params) {
+  params.validate();
+  opt.curve = ScaleStrength::ReliefEdges;
+  MultiscaleReliefEdges r;
+  TriMesh smoothed = optimally_smoothed(mesh, opt, r.scale);
+  params.presmoothing = Length::in_edges(0);
+  r.curves = compute_relief_edges(smoothed, params);
+  place_on_mesh(mesh, r.curves.edges);
+  r.scale.smoothed = std::move(smoothed.vertices);
+  return r;
+}
+
+}  // namespace reliefkit
