@@ -1,5 +1,7 @@
 #include "mesh_bridge.h"
 
+#include <vcg/complex/append.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -55,6 +57,28 @@ MeshModel* add_curve_layer(MeshDocument& doc, const QString& label, const Polyli
     }
   }
   vcg::tri::UpdateBounding<CMeshO>::Box(cm);
+  return layer;
+}
+
+MeshModel* add_surface_layer(MeshDocument& doc, const QString& label, MeshModel& source, const View& view,
+                             const std::vector<Vec3>& positions) {
+  MeshModel* layer = doc.addNewMesh("", label, false);
+  layer->updateDataMask(&source);
+  // MeshCopy keeps the live vertices in order: a source vertex's index in the copy is the number
+  // of live vertices before it.
+  std::vector<int> copy_index(source.cm.vert.size(), -1);
+  int live = 0;
+  for (size_t i = 0; i < source.cm.vert.size(); ++i)
+    if (!source.cm.vert[i].IsD()) copy_index[i] = live++;
+  vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(layer->cm, source.cm);
+  for_each_vertex(view, [&](int i, CVertexO* v) {
+    const int k = copy_index[size_t(v - &source.cm.vert[0])];
+    if (k < 0 || k >= int(layer->cm.vert.size())) return;
+    const Vec3& p = positions[size_t(i)];
+    layer->cm.vert[size_t(k)].P() = Point3m(Scalarm(p.x()), Scalarm(p.y()), Scalarm(p.z()));
+  });
+  vcg::tri::UpdateNormal<CMeshO>::PerVertexNormalizedPerFaceNormalized(layer->cm);
+  vcg::tri::UpdateBounding<CMeshO>::Box(layer->cm);
   return layer;
 }
 

@@ -34,6 +34,11 @@ MeshModel* add_curve_layer(MeshDocument& doc, const QString& label, const Polyli
                            vcg::Color4b color = vcg::Color4b(0, 0, 0, 255), const std::vector<Vec3>* normals = nullptr,
                            double lift = 0);
 
+/// Adds a new layer: a copy of `source` (all its per-vertex data) whose vertices in `view` take
+/// `positions` (per view vertex); normals recomputed. The layer is not made current.
+MeshModel* add_surface_layer(MeshDocument& doc, const QString& label, MeshModel& source, const View& view,
+                             const std::vector<Vec3>& positions);
+
 /// "<mesh name> – <what>": the label of a layer derived from `m` (file extension dropped).
 QString derived_label(const MeshModel& m, const QString& what);
 

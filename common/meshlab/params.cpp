@@ -52,6 +52,15 @@ double read_float(FilterCall& call, const char* name, const QString& label, doub
   return v;
 }
 
+int read_int(FilterCall& call, const char* name, const QString& label, int lo, int hi) {
+  const RichParameter& p = parameter(call, name, label);
+  if (!p.value().isInt())
+    throw InputError(qUtf8Printable(QString("%1 must be a whole number (the script gives another type).").arg(where(name, label))));
+  const int v = p.value().getInt();
+  require_range(v, qUtf8Printable(where(name, label)), lo, hi);
+  return v;
+}
+
 int read_enum(FilterCall& call, const char* name, const QString& label, int count) {
   const RichParameter& p = parameter(call, name, label);
   if (!p.value().isEnum() && !p.value().isInt())

@@ -26,6 +26,8 @@ Length read_length(FilterCall& call, const char* name, const QString& label, dou
 
 /// A finite number in [lo, hi].
 double read_float(FilterCall& call, const char* name, const QString& label, double lo, double hi);
+/// A whole number in [lo, hi].
+int read_int(FilterCall& call, const char* name, const QString& label, int lo, int hi);
 /// An enum index in [0, count).
 int read_enum(FilterCall& call, const char* name, const QString& label, int count);
 bool read_bool(FilterCall& call, const char* name, const QString& label);

@@ -24,7 +24,10 @@ void normalise_curve_strengths(Polylines& curves, const OptimalScale& scale, dou
 void drop_banks(Polylines& curves, const OptimalScale& scale, int flanked_sign) {
   if (scale.bank_sign.empty()) return;
   auto bank = [&](int v) {
-    return scale.bank_sign[v] == flanked_sign && scale.own_strength[v] < kBankRatio * scale.bank_strength[v];
+    // In a flanking feature's footprint and weaker than kBankRatio x it, or of the opposite
+    // kind where it lies (a crest line drawn along a groove's floor by noise).
+    return (scale.bank_sign[v] == flanked_sign && scale.own_strength[v] < kBankRatio * scale.bank_strength[v]) ||
+           scale.own_sign[v] == flanked_sign;
   };
   std::vector<char> keep(curves.segments.size(), 1);
   for (size_t k = 0; k < curves.segments.size(); ++k) {

@@ -240,6 +240,7 @@ OptimalScale optimal_scale(const TriMesh& mesh, const OptimalScaleOptions& opt) 
     out.sign[v] = static_cast<signed char>(sv[best_k] > 0 ? 1 : sv[best_k] < 0 ? -1 : 0);
   }
   out.own_strength = out.strength;
+  out.own_sign = out.sign;
   std::vector<double>().swap(s);
 
   std::vector<double> positive;
@@ -267,6 +268,10 @@ OptimalScale optimal_scale(const TriMesh& mesh, const OptimalScaleOptions& opt) 
           for (int k = topo.ring.offset[v]; k < topo.ring.offset[v + 1]; ++k) next[topo.ring.vertex[k]] = 0;
       eligible.swap(next);
     }
+    // A selection at the top of the range is no peak (the strength still grew there: a feature's
+    // far tail, or a shape wider than the range): it anchors nothing either.
+    for (int v = 0; v < nv; ++v)
+      if (selected_edges[v] >= edges.back() * (1 - 1e-9)) eligible[v] = 0;
     std::vector<double> sel = selected_edges, str = out.strength;
     std::vector<signed char> sg = out.sign;
     for (int v = 0; v < nv; ++v)
@@ -274,7 +279,7 @@ OptimalScale optimal_scale(const TriMesh& mesh, const OptimalScaleOptions& opt) 
     dominant_scale(mesh, topo, opt.dominant_reach, sel, str, sg);
     for (int v = 0; v < nv; ++v) {
       const bool anchor = eligible[v] && out.own_strength[v] > kAnchorStrengths * out.strength_floor &&
-                          out.own_strength[v] >= 0.95 * str[v];
+                          out.own_strength[v] >= kAnchorShare * str[v];
       if (!anchor) selected_edges[v] = 0, out.strength[v] = 0, out.sign[v] = 0;
     }
     out.bank_strength = out.strength;

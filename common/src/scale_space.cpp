@@ -113,7 +113,7 @@ ScaleSpaceReport scale_space(const TriMesh& mesh, const std::vector<double>& sig
   const int nv = mesh.n_vertices();
   const MeshTopology own = opt.topology ? MeshTopology() : mesh_topology(mesh);
   const MeshTopology& topo = opt.topology ? *opt.topology : own;
-  const LaplacianResult lap = cotangent_laplacian(mesh, topo);
+  const LaplacianResult lap0 = cotangent_laplacian(mesh, topo);
 
   // Who is what: interior (no boundary neighbour, some area), boundary loop (two boundary
   // neighbours), fixed (the rest).
@@ -124,7 +124,7 @@ ScaleSpaceReport scale_space(const TriMesh& mesh, const std::vector<double>& sig
   ScaleSpaceReport report;
   for (int v = 0; v < nv; ++v) {
     const int nb = topo.border.offset[v + 1] - topo.border.offset[v];
-    if (nb == 0 && lap.mass[v] > 0) {
+    if (nb == 0 && lap0.mass[v] > 0) {
       kind[v] = kInterior, index[v] = int(inner.vertex.size()), inner.vertex.push_back(v);
     } else if (nb == 2) {
       kind[v] = kLoop, index[v] = int(loop.vertex.size()), loop.vertex.push_back(v);
@@ -134,67 +134,77 @@ ScaleSpaceReport scale_space(const TriMesh& mesh, const std::vector<double>& sig
   }
   report.boundary_vertices = static_cast<int>(loop.vertex.size());
 
-  // Interior block: K = -L restricted; the weights towards loop and fixed vertices are known terms.
-  {
-    const int n = static_cast<int>(inner.vertex.size());
-    std::vector<Eigen::Triplet<double>> trip;
-    inner.mass.resize(n);
-    inner.known.resize(n);
-    for (int i = 0; i < n; ++i) {
-      const int v = inner.vertex[i];
-      inner.mass[i] = lap.mass[v];
-      for (Eigen::SparseMatrix<double>::InnerIterator it(lap.L, v); it; ++it) {
-        const int u = static_cast<int>(it.row());
-        if (kind[u] == kInterior) trip.emplace_back(i, index[u], -it.value());
-        else inner.known[i].push_back({u, -it.value()});  // a stiffness entry, like the loop block's
+  // The operator of a geometry: the blocks' stiffness and mass, their system matrices' structure,
+  // and the figures of the cost model.
+  Eigen::SparseMatrix<double> inner_A, loop_A;
+  std::vector<int> inner_diag, loop_diag;
+  double bound = 0, stiff = 0;
+  auto assemble = [&](const TriMesh& geometry, const LaplacianResult& lap) {
+    // Interior block: K = -L restricted; the weights towards loop and fixed vertices are known terms.
+    {
+      const int n = static_cast<int>(inner.vertex.size());
+      std::vector<Eigen::Triplet<double>> trip;
+      const Eigen::VectorXd old_mass = inner.mass;
+      inner.mass.resize(n);
+      inner.known.assign(size_t(n), {});
+      for (int i = 0; i < n; ++i) {
+        const int v = inner.vertex[i];
+        // A vertex whose area vanished on the way keeps its last one (the system stays definite).
+        inner.mass[i] = lap.mass[v] > 0 ? lap.mass[v] : old_mass.size() == n ? old_mass[i] : lap0.mass[v];
+        for (Eigen::SparseMatrix<double>::InnerIterator it(lap.L, v); it; ++it) {
+          const int u = static_cast<int>(it.row());
+          if (kind[u] == kInterior) trip.emplace_back(i, index[u], -it.value());
+          else inner.known[i].push_back({u, -it.value()});  // a stiffness entry, like the loop block's
+        }
       }
+      inner.K.resize(n, n);
+      inner.K.setFromTriplets(trip.begin(), trip.end());
     }
-    inner.K.resize(n, n);
-    inner.K.setFromTriplets(trip.begin(), trip.end());
-  }
-  // Loop block: 1-D stiffness along the boundary polylines, weight 1 / edge length, mass half the
-  // adjacent boundary edges.
-  {
-    const int n = static_cast<int>(loop.vertex.size());
-    std::vector<Eigen::Triplet<double>> trip;
-    loop.mass.setZero(n);
-    loop.known.resize(n);
-    for (int i = 0; i < n; ++i) {
-      const int v = loop.vertex[i];
-      double diag = 0;
-      for (int k = topo.border.offset[v]; k < topo.border.offset[v + 1]; ++k) {
-        const int u = topo.border.vertex[k];
-        const double len = (mesh.vertices[v] - mesh.vertices[u]).norm();
-        if (!(len > 0)) continue;
-        loop.mass[i] += 0.5 * len;
-        diag += 1 / len;
-        if (kind[u] == kLoop) trip.emplace_back(i, index[u], -1 / len);
-        else loop.known[i].push_back({u, -1 / len});  // K_known has the sign of the stiffness
+    // Loop block: 1-D stiffness along the boundary polylines, weight 1 / edge length, mass half the
+    // adjacent boundary edges.
+    {
+      const int n = static_cast<int>(loop.vertex.size());
+      std::vector<Eigen::Triplet<double>> trip;
+      loop.mass.setZero(n);
+      loop.known.assign(size_t(n), {});
+      for (int i = 0; i < n; ++i) {
+        const int v = loop.vertex[i];
+        double diag = 0;
+        for (int k = topo.border.offset[v]; k < topo.border.offset[v + 1]; ++k) {
+          const int u = topo.border.vertex[k];
+          const double len = (geometry.vertices[v] - geometry.vertices[u]).norm();
+          if (!(len > 0)) continue;
+          loop.mass[i] += 0.5 * len;
+          diag += 1 / len;
+          if (kind[u] == kLoop) trip.emplace_back(i, index[u], -1 / len);
+          else loop.known[i].push_back({u, -1 / len});  // K_known has the sign of the stiffness
+        }
+        trip.emplace_back(i, i, diag);
+        if (!(loop.mass[i] > 0)) loop.mass[i] = 1;  // a loop of coincident points: stays put
       }
-      trip.emplace_back(i, i, diag);
-      if (!(loop.mass[i] > 0)) loop.mass[i] = 1;  // a loop of coincident points: stays put
+      loop.K.resize(n, n);
+      loop.K.setFromTriplets(trip.begin(), trip.end());
     }
-    loop.K.resize(n, n);
-    loop.K.setFromTriplets(trip.begin(), trip.end());
-  }
-
-  inner.K.makeCompressed();
-  loop.K.makeCompressed();
-  Eigen::SparseMatrix<double> inner_A = inner.K, loop_A = loop.K;
-  const std::vector<int> inner_diag = diagonal_positions(inner.K), loop_diag = diagonal_positions(loop.K);
+    inner.K.makeCompressed();
+    loop.K.makeCompressed();
+    inner_A = inner.K, loop_A = loop.K;
+    inner_diag = diagonal_positions(inner.K), loop_diag = diagonal_positions(loop.K);
+    // Cost model of one level, in sparse products: explicit steps need dtau * bound of them;
+    // implicit ones about 2 per conjugate-gradient iteration (capped where Cholesky takes over).
+    bound = std::max(gershgorin_bound(inner), gershgorin_bound(loop));
+    stiff = std::max(median_stiffness(inner), median_stiffness(loop));
+  };
+  assemble(mesh, lap0);
 
   TriMesh work;
   work.faces = mesh.faces;
   work.vertices = mesh.vertices;
-  // Cost model of one level, in sparse products: explicit steps need dtau * bound of them;
-  // implicit ones about 2 per conjugate-gradient iteration (capped where Cholesky takes over).
-  const double bound = std::max(gershgorin_bound(inner), gershgorin_bound(loop));
-  const double stiff = std::max(median_stiffness(inner), median_stiffness(loop));
   std::vector<Vec3> scratch;
   double tau = 0;
   const int substeps = std::max(1, opt.substeps);
   for (size_t level = 0; level < sigmas.size(); ++level) {
     if (opt.progress) opt.progress(int(100 * level / sigmas.size()), "Scale space");
+    if (level > 0 && opt.reweight) assemble(work, cotangent_laplacian(work, topo));
     const double target = 0.5 * sigmas[level] * sigmas[level];
     // `substeps` steps per doubling of the diffusion time (at least that many per level): a level
     // far above the previous one is not crossed by a few huge steps.

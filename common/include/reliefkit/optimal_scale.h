@@ -61,6 +61,10 @@ constexpr int kBorderRings = 3;
 /// twice the largest scale, would otherwise smooth the object flat).
 constexpr double kMinObjectScales = 8.0;
 
+/// An anchor's own strength is at least this share of the strongest selection reaching it: the
+/// centre line of a feature (its strength varies along it by noise), not its banks (0.45).
+constexpr double kAnchorShare = 0.8;
+
 enum class ScaleStrength { RidgesValleys, ReliefEdges };
 
 struct OptimalScaleOptions {
@@ -91,6 +95,7 @@ struct OptimalScale {
   std::vector<double> strength;  // #V normalised strength t^γ f at the selection (unit-free: f x h or h²),
                                  // the dominant one's (dominant_reach)
   std::vector<double> own_strength;  // #V the vertex's own, before dominance
+  std::vector<signed char> own_sign; // #V and the sign of its own selection
   std::vector<signed char> sign;     // #V ridges & valleys: +1 the dominant feature is convex (ridge-like), -1 concave
   std::vector<double> bank_strength;     // #V the strongest feature within bank_reach x its scale
   std::vector<signed char> bank_sign;    // #V and its sign

@@ -1,0 +1,13 @@
+// ReliefKit — Multi-scale plugin (thesis chapter 5): the optimal scale of every vertex, the
+// optimally smoothed surface, multi-scale ridges & valleys and relief edges.
+#pragma once
+
+#include "rk_plugin.h"
+
+class ReliefKitMultiscalePlugin : public reliefkit::ml::ReliefKitPlugin {
+  Q_OBJECT
+  MESHLAB_PLUGIN_IID_EXPORTER(MESH_FILTER_INTERFACE_IID)
+  Q_INTERFACES(MeshFilterInterface)
+ public:
+  ReliefKitMultiscalePlugin();
+};
