@@ -84,7 +84,7 @@ MultiscaleRidgeValleys multiscale_ridges_valleys(const TriMesh& mesh, OptimalSca
       const auto [a, b] = all.point_edge[i];
       all.strength[i] = (1 - all.point_weight[i]) * feature[a] + all.point_weight[i] * feature[b];
     }
-    normalise_curve_strengths(all, r.scale, opt.gamma, 1);
+    normalise_curve_strengths(all, r.scale, opt.effective_gamma(), 1);
     drop_banks(all, r.scale, valleys ? 1 : -1);
     std::vector<double> seg(all.segments.size());
     for (size_t k = 0; k < seg.size(); ++k) seg[k] = 0.5 * (all.strength[all.segments[k][0]] + all.strength[all.segments[k][1]]);
@@ -108,6 +108,20 @@ MultiscaleReliefEdges multiscale_relief_edges(const TriMesh& mesh, OptimalScaleO
   TriMesh smoothed = optimally_smoothed(mesh, opt, r.scale);
   params.presmoothing = Length::in_edges(0);
   r.curves = compute_relief_edges(smoothed, params);
+  // The detector's noise threshold comes from the noise it measures on the surface it is given,
+  // where most of it is gone, and is calibrated on single-scale smoothing. Measured instead on
+  // this surface: the tilt of the areas no feature anchors is noise alone; strong edges must tilt
+  // kNoiseTiltFactor x its 99th percentile (as noise_tilt asks of single-scale edges).
+  if (params.strong_angle == 0) {
+    std::vector<double> tilt;
+    for (size_t v = 0; v < r.scale.selected.size(); ++v)
+      if (!(r.scale.selected[v] > 0) && std::isfinite(r.curves.angle[v])) tilt.push_back(r.curves.angle[v]);
+    if (tilt.size() >= 100) r.noise_angle = kNoiseTiltFactor * percentile(tilt, 0.99);
+    if (r.curves.strong_angle < r.noise_angle) {
+      params.strong_angle = r.noise_angle;
+      r.curves = compute_relief_edges(smoothed, params);
+    }
+  }
   place_on_mesh(mesh, r.curves.edges);
   r.scale.smoothed = std::move(smoothed.vertices);
   return r;

@@ -18,7 +18,7 @@ void OptimalScaleOptions::validate() const {
   require_range(max_scale_edges, "Largest scale (edge lengths)", min_scale_edges, 1000);
   require_range(levels_per_octave, "Levels per octave", 1, 16);
   // A single peak of t^γ f needs γ < 1.5 (ridges, eq. 5.11) and γ < 1.3 (relief edges, eq. 5.15).
-  require_range(gamma, "Scale normalisation gamma", 0.1, curve == ScaleStrength::ReliefEdges ? 1.29 : 1.45);
+  if (gamma != 0) require_range(gamma, "Scale normalisation gamma", 0.1, curve == ScaleStrength::ReliefEdges ? 1.29 : 1.45);
   require_range(fill_weight, "Fill weight a f_max", 0, 1e6);
   require_range(fill_smoothness, "Fill smoothness", 1e-6, 1e6);
   require_range(featureless_pull, "Featureless pull", 1e-9, 1e3);
@@ -175,6 +175,7 @@ OptimalScale optimal_scale(const TriMesh& mesh, const OptimalScaleOptions& opt) 
   for (double e : edges) out.levels.push_back(e * h);
   const int nl = static_cast<int>(edges.size()), nv = mesh.n_vertices();
   const bool relief = opt.curve == ScaleStrength::ReliefEdges;
+  const double gamma = opt.effective_gamma();
 
   // Strength per vertex and level, vertex-major: s[v * nl + k] = f made unit-free (x h or h²).
   std::vector<double> s;
@@ -229,13 +230,13 @@ OptimalScale optimal_scale(const TriMesh& mesh, const OptimalScaleOptions& opt) 
     const double* sv = s.data() + size_t(v) * nl;
     std::vector<double> f(nl);
     for (int k = 0; k < nl; ++k) f[k] = std::abs(sv[k]);
-    const double ts = select_scale(t, f.data(), 1, opt.gamma);
+    const double ts = select_scale(t, f.data(), 1, gamma);
     selected_edges[v] = ts > 0 ? std::sqrt(ts) : 0.0;
     out.selected[v] = selected_edges[v] * h;
     double best = 0;
     int best_k = 0;
     for (int k = 0; k < nl; ++k)
-      if (std::pow(t[k], opt.gamma) * f[k] > best) best = std::pow(t[k], opt.gamma) * f[k], best_k = k;
+      if (std::pow(t[k], gamma) * f[k] > best) best = std::pow(t[k], gamma) * f[k], best_k = k;
     out.strength[v] = best;
     out.sign[v] = static_cast<signed char>(sv[best_k] > 0 ? 1 : sv[best_k] < 0 ? -1 : 0);
   }

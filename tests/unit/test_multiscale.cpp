@@ -135,3 +135,22 @@ TEST(Multiscale, RefusesMeshesWithoutFacesAndTooSmallForTheScales) {
   EXPECT_TRUE(s.max_scale_lowered);
   EXPECT_LE(s.levels.back(), s.scale.object_size / kMinObjectScales * (1 + 1e-9));
 }
+
+// Multi-scale relief edges against the known step line of the noisy disc reliefs on a cylinder
+// (a raised and a sunken disc, tanh width 2.5 edge lengths): measured recall / precision
+// 0.971 / 0.965 at 20 % noise, 0.961 / 0.960 at 10 %, 0.987 / 0.979 clean (single scale at the
+// automatic pre-smoothing: 1.000 / 1.000). The harder case — a sharp small step and a wide
+// soft step on one noisy cylinder, multi-scale ahead of every single scale — is not met yet: it is
+// measured by bench/bench_multiscale and discussed in docs/multiscale.md.
+TEST(Multiscale, ReliefEdgesFollowTheStepsOfNoisyDiscReliefs) {
+  for (double noise : {0.0, 0.1, 0.2}) {
+    rktest::ReliefShape s;
+    s.noise = noise;
+    const rktest::Relief r = rktest::discs_on_cylinder(s);
+    const MultiscaleReliefEdges ms = multiscale_relief_edges(r.mesh, {});
+    const rktest::Detection d = rktest::score(r, ms.curves.edges, r.mean_edge);
+    std::printf("noise %.0f %%: recall %.3f precision %.3f\n", 100 * noise, d.recall, d.precision);
+    EXPECT_GE(d.recall, 0.9) << noise;
+    EXPECT_GE(d.precision, 0.9) << noise;
+  }
+}

@@ -19,6 +19,7 @@ struct MultiscaleRidgeValleys {
 struct MultiscaleReliefEdges {
   OptimalScale scale;
   ReliefEdgeResult curves;   // edges on the input mesh; per-vertex fields of the smoothed surface
+  double noise_angle = 0;    // kNoiseTiltFactor x the 99th percentile of the tilt where no feature is (radians)
 };
 
 /// Multiplies each curve point's strength by (σ / h)^{2γ} h^power, σ the point's scale (interpolated

@@ -67,11 +67,25 @@ constexpr double kAnchorShare = 0.8;
 
 enum class ScaleStrength { RidgesValleys, ReliefEdges };
 
+/// γ for ridges & valleys: the thesis' 1 (selects √2 x a Gaussian ridge's width).
+constexpr double kRidgeGamma = 1.0;
+/// γ for relief edges: 1, as for ridges (selects √2 x a smoothed step's width; eq. 5.15 needs
+/// γ < 1.3). With γ = 1 the normalised strength t C of a smoothed step peaks at 0.15 x its slope
+/// (height / width): a wide soft step of slope 0.7 is then no stronger than 20 % noise at one edge
+/// length (0.1-0.24) and anchors no scale. γ = 1.25 lifts such steps (0.35, selected at √5 x their
+/// width) but lost the disc reliefs (recall 0.08-0.21 on the cylinder); see docs/multiscale.md.
+constexpr double kReliefEdgeGamma = 1.0;
+
 struct OptimalScaleOptions {
   ScaleStrength curve = ScaleStrength::RidgesValleys;
   double min_scale_edges = 1, max_scale_edges = 16;  // the range of σ, in edge lengths
   int levels_per_octave = 2;                          // scales per doubling of σ
-  double gamma = 1.0;                                 // both curve types: eq. 5.11 / 5.15 need γ < 1.5 / 1.3
+  /// The normalisation t^γ; 0: the curve type's default (kRidgeGamma, kReliefEdgeGamma). A
+  /// single peak needs γ < 1.5 for ridges (eq. 5.11) and γ < 1.3 for relief edges (eq. 5.15).
+  double gamma = 0;
+  double effective_gamma() const {
+    return gamma != 0 ? gamma : curve == ScaleStrength::ReliefEdges ? kReliefEdgeGamma : kRidgeGamma;
+  }
   double fill_weight = 9.0;                           // a f_max of eq. 5.3
   double fill_smoothness = 1.0;                       // μ
   double featureless_pull = 1e-4;                     // ε
