@@ -69,7 +69,7 @@ MultiscaleRidgeValleys multiscale_ridges_valleys(const TriMesh& mesh, OptimalSca
   if (params.progress) params.progress(95, "Multi-scale ridges and valleys");
   // All crossings, their strengths normalised as in the scale selection, so that a fine and a
   // coarse feature of the same depth compare equal; the automatic threshold then sits above
-  // the noise's normalised strength (the median over the vertices, OptimalScale::strength_floor).
+  // what noise alone reaches (OptimalScale::strength_floor).
   for (bool valleys : {false, true}) {
     Polylines all = ridge_lines(smoothed, c.curvature, valleys, 0.0);
     // The curvature across the line over the base's (on a curved object the base's own
@@ -90,7 +90,10 @@ MultiscaleRidgeValleys multiscale_ridges_valleys(const TriMesh& mesh, OptimalSca
     for (size_t k = 0; k < seg.size(); ++k) seg[k] = 0.5 * (all.strength[all.segments[k][0]] + all.strength[all.segments[k][1]]);
     double strongest = 0;
     for (double x : seg) strongest = std::max(strongest, x);
-    const double threshold = params.relative_threshold * automatic_curve_threshold(r.scale.strength_floor, seg);
+    // The noise term of the automatic threshold is kNoiseFactor x its argument; the floor is
+    // already the noise's 99th percentile.
+    const double threshold =
+        params.relative_threshold * automatic_curve_threshold(kCurveNoise * r.scale.strength_floor / kNoiseFactor, seg);
     Polylines kept = drop_short_chains(keep_strong_segments(all, threshold), c.min_length);
     place_on_mesh(mesh, kept);
     (valleys ? c.valleys : c.ridges) = std::move(kept);

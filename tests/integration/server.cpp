@@ -81,6 +81,10 @@ std::string param_float(const std::string& name, double value) {
   s << "<Param type=\"RichFloat\" name=\"" << name << "\" value=\"" << value << "\"/>";
   return s.str();
 }
+std::string param_int(const std::string& name, int value) {
+  return "<Param type=\"RichInt\" name=\"" + name + "\" value=\"" + std::to_string(value) + "\"/>";
+}
+
 std::string param_bool(const std::string& name, bool value) {
   return "<Param type=\"RichBool\" name=\"" + name + "\" value=\"" + (value ? "true" : "false") + "\"/>";
 }

@@ -29,6 +29,7 @@ std::string param_float(const std::string& name, double value);
 /// A length parameter as ReliefKit writes it: "auto" or a number of edge lengths.
 std::string param_string(const std::string& name, const std::string& value);
 std::string param_bool(const std::string& name, bool value);
+std::string param_int(const std::string& name, int value);
 void write_text(const std::string& path, const std::string& text);
 
 /// Writes `mesh` as <dir>/in.ply and the filters as <dir>/s.mlx in a fresh test directory

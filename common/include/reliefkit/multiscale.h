@@ -27,6 +27,10 @@ struct MultiscaleReliefEdges {
 /// (curvature) or 2 (curvature derivative).
 void normalise_curve_strengths(Polylines& curves, const OptimalScale& scale, double gamma, int power);
 
+/// Curves (chains at least the minimum length) must be this share of the strength noise reaches
+/// at 99 % of the vertices (OptimalScale::strength_floor).
+constexpr double kCurveNoise = 0.75;
+
 /// A Gaussian groove's banks are ridges of the surface with 0.45 times the groove's curvature
 /// (and a crest's feet valleys): curves of the opposite kind within a feature's footprint
 /// (OptimalScale::sign, dominant_reach) that are less than this share of its strength are its

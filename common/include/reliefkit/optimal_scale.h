@@ -44,15 +44,6 @@
 
 namespace reliefkit {
 
-/// Strengths up to this multiple of the median (the noise's; 90 % of noise vertices on the test
-/// cylinder lie below 1.7x) carry no weight in the fill: isolated noise spikes would otherwise keep
-/// the finest scale, and their noise with it.
-constexpr double kNoiseStrengths = 2.0;
-
-/// A feature centre (a vertex whose selection is the strongest reaching it) must be this many
-/// times the noise's median strength to anchor the scale of its footprint.
-constexpr double kAnchorStrengths = 3.0;
-
 /// Selections within this many rings of a boundary (one-sided neighbourhoods) anchor no scale.
 constexpr int kBorderRings = 3;
 
@@ -64,6 +55,10 @@ constexpr double kMinObjectScales = 8.0;
 /// An anchor's own strength is at least this share of the strongest selection reaching it: the
 /// centre line of a feature (its strength varies along it by noise), not its banks (0.45).
 constexpr double kAnchorShare = 0.8;
+
+/// A selection anchors a scale only if it is this many times what noise reaches at its scale
+/// (OptimalScale::level_noise, the noise's 99th percentile).
+constexpr double kSignificance = 2.0;
 
 enum class ScaleStrength { RidgesValleys, ReliefEdges };
 
@@ -97,6 +92,7 @@ struct OptimalScaleOptions {
   ScaleSpaceOptions::Stepping stepping = ScaleSpaceOptions::Stepping::Auto;
   const MeshTopology* topology = nullptr;
   Progress progress = nullptr;
+  double noise_floor = -1;  // < 0: level_noise measured on a noise patch; 0: this is that patch (measure it)
   /// Throws InputError naming the first parameter out of its range.
   void validate() const;
 };
@@ -116,7 +112,10 @@ struct OptimalScale {
   std::vector<double> sigma;     // #V the final scale (mesh units): filled (eq. 5.3) or = selected
   std::vector<Vec3> smoothed;    // #V the optimally smoothed surface, when asked
   std::vector<Mat3> base_shape;  // #V the base surface's shape operator, with the smoothed surface
-  double strength_floor = 0;     // the median strength (fill: no weight at or below)
+  std::vector<double> level_noise;  // per level: what noise alone reaches (99th percentile of t^γ f on a patch
+                                    // with the estimated noise); strengths count above it
+  double strength_floor = 0;     // the largest of them (fill weights, curve thresholds)
+  NoiseEstimate noise;           // the scan's estimated noise
   double strength_ref = 0;       // f_max of eq. 5.3 (99.9th percentile of the strengths)
   SolveReport fill_solve;
   ScaleSpaceReport space;
