@@ -122,7 +122,8 @@ QString histogram(const OptimalScale& s) {
     if (!(s.selected[v] > 0)) ++featureless;
   }
   const double n = std::max<size_t>(1, s.sigma.size());
-  QString line = "Optimal scale (edge lengths, share of vertices):";
+  QString line = QString("Edge length %1 (the unit of the scales). Optimal scale (edge lengths, share of vertices):")
+                     .arg(h, 0, 'g', 4);
   for (size_t k = 0; k < count.size(); ++k)
     line += QString(" %1: %2 %").arg(s.levels[k] / h, 0, 'f', 1).arg(100.0 * count[k] / n, 0, 'f', 1);
   line += QString("; %1 % of the vertices carry no feature (their scale is filled in, eq. 5.3, solved by %2).")

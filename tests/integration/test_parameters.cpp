@@ -85,7 +85,8 @@ TEST(PortableParameters, EveryExampleScriptGivesTheSameResultInAnyUnit) {
   const ScriptOutputs scripts[] = {{"curvature_colors.mlx", {}, true},
                                    {"demarcating_shading.mlx", {1}, true},
                                    {"relief_edges.mlx", {1, 2, 3}, false},
-                                   {"curvature.mlx", {}, false}};
+                                   {"curvature.mlx", {}, false},
+                                   {"multiscale.mlx", {1, 2, 3}, false}};
   const MeshFile coin = read_mesh(kCoin);
   const double edge = reliefkit::mesh_scale(coin.mesh).edge;
   for (const auto& sc : scripts) {
