@@ -183,6 +183,12 @@ OptimalScale optimal_scale(const TriMesh& mesh, const OptimalScaleOptions& opt) 
   if (opt.smoothed_surface) sized(disp, size_t(nv) * size_t(nl));
   ScaleSpaceOptions so;
   so.topology = &topo;
+  // Ridges & valleys: two implicit steps per doubling of the diffusion time (the scale space's
+  // default is 4) — the levels feed a peak search. Measured on the unit test's noisy cylinder:
+  // F1 0.960 -> 0.985, and 25.3 -> 19.5 s at 1 M faces. Relief edges keep 4: their strength is a
+  // third derivative, where backward Euler's kernel differs most from a Gaussian (with 2 the
+  // noisy disc reliefs fell from 0.96-0.99 to 0.71-0.88 recall).
+  so.substeps = opt.curve == ScaleStrength::ReliefEdges ? ScaleSpaceOptions().substeps : kOptimalScaleSubsteps;
   so.stepping = opt.stepping;
   CurvatureOptions co;
   co.derivatives = false;

@@ -35,7 +35,7 @@ TEST(OptimalScale, EachGrooveGetsItsOwnWidthTimesRootTwo) {
       const double med = rktest::median(ratio);
       std::printf("unit %g, groove %.0f edge lengths wide: selected sigma / width = %.3f (eq. 5.11: %.3f)\n", unit,
                   width / h, med, std::sqrt(2.0));
-      // Measured 1.552 and 1.364: the narrow groove's slope and the scale space's operator,
+      // Measured 1.605 and 1.407: the narrow groove's slope and the scale space's operator,
       // re-evaluated on each level's surface, add some; the wide one loses strength at large
       // scales to the base surface, which at 64 edge lengths still holds part of it.
       EXPECT_NEAR(med, std::sqrt(2.0), 0.2) << width / h;

@@ -60,6 +60,10 @@ constexpr double kAnchorShare = 0.8;
 /// (OptimalScale::level_noise, the noise's 99th percentile).
 constexpr double kSignificance = 2.0;
 
+/// Implicit scale-space steps per doubling of the diffusion time in the optimal-scale pass for
+/// ridges & valleys (relief edges keep the scale space's 4; see optimal_scale.cpp).
+constexpr int kOptimalScaleSubsteps = 2;
+
 enum class ScaleStrength { RidgesValleys, ReliefEdges };
 
 /// γ for ridges & valleys: the thesis' 1 (selects √2 x a Gaussian ridge's width).
