@@ -74,10 +74,9 @@ std::vector<double> scale_levels(double lo, double hi, int per_octave) {
 // Each vertex takes the selection (scale, strength) of the strongest vertex whose reach —
 // `reach` times its scale, along mesh edges — covers it: a feature's footprint gets the scale
 // of its centre. Jacobi sweeps of a bounded propagation, in edge lengths.
-void dominant_scale(const TriMesh& mesh, const MeshTopology& topo, double reach, std::vector<double>& sigma_edges,
-                    std::vector<double>& strength, std::vector<signed char>& sign) {
+void dominant_scale(const TriMesh& mesh, const MeshTopology& topo, double h, double reach,
+                    std::vector<double>& sigma_edges, std::vector<double>& strength, std::vector<signed char>& sign) {
   const int nv = mesh.n_vertices();
-  const double h = mesh_scale(mesh).edge;
   struct Best { double strength, sigma, left; signed char sign; };  // left: remaining reach, edge lengths
   std::vector<Best> cur(static_cast<size_t>(nv)), next;
   double max_reach = 0;
@@ -318,7 +317,7 @@ OptimalScale optimal_scale(const TriMesh& mesh, const OptimalScaleOptions& opt) 
     std::vector<signed char> sg = out.sign;
     for (int v = 0; v < nv; ++v)
       if (!eligible[v]) str[v] = 0, sel[v] = 0;
-    dominant_scale(mesh, topo, opt.dominant_reach, sel, str, sg);
+    dominant_scale(mesh, topo, h, opt.dominant_reach, sel, str, sg);
     for (int v = 0; v < nv; ++v) {
       const bool anchor = eligible[v] && out.own_strength[v] > 0 &&
                           out.own_strength[v] >= kAnchorShare * str[v];
@@ -327,8 +326,8 @@ OptimalScale optimal_scale(const TriMesh& mesh, const OptimalScaleOptions& opt) 
     out.bank_strength = out.strength;
     out.bank_sign = out.sign;
     std::vector<double> bank_sel = selected_edges;
-    dominant_scale(mesh, topo, opt.dominant_reach, selected_edges, out.strength, out.sign);
-    dominant_scale(mesh, topo, opt.bank_reach, bank_sel, out.bank_strength, out.bank_sign);
+    dominant_scale(mesh, topo, h, opt.dominant_reach, selected_edges, out.strength, out.sign);
+    dominant_scale(mesh, topo, h, opt.bank_reach, bank_sel, out.bank_strength, out.bank_sign);
     for (int v = 0; v < nv; ++v) out.selected[v] = selected_edges[v] * h;
   }
   const double u_min = std::log(edges.front()), u_max = std::log(edges.back());

@@ -166,6 +166,35 @@ TEST(MultiscaleFilters, TooSmallAMeshStopsWithAMessageAndChangesNothing) {
   }
 }
 
+TEST(MultiscaleFilters, BadParametersStopWithAClearMessage) {
+  const reliefkit::TriMesh m = height_field([](double x, double) { return 0.1 * x * x; }, 1.0, 30);
+  const struct {
+    std::string filter, expect;
+  } cases[] = {
+      {mlx_filter("Compute Optimal Scale", {param_enum("curve", 0, 2), param_string("min_scale", "auto"),
+                                            param_string("max_scale", "auto"), param_int("levels", 99),
+                                            param_bool("quality", true)}),
+       "Scales per doubling"},
+      {mlx_filter("Compute Optimal Scale", {param_enum("curve", 7, 2), param_string("min_scale", "auto"),
+                                            param_string("max_scale", "auto"), param_int("levels", 2),
+                                            param_bool("quality", true)}),
+       "Curves the scale is for"},
+      {mlx_filter("Multi-scale Ridges and Valleys",
+                  with(with({param_float("threshold", std::nan("")), param_float("min_length", 4)}, scale_range()),
+                       {param_float("lift", 0)})),
+       "Strength threshold"},
+      {mlx_filter("Multi-scale Relief Edges", {param_float("min_length", 2), param_float("gap", 3),
+                                               param_string("min_scale", "4"), param_string("max_scale", "lots"),
+                                               param_int("levels", 2), param_float("lift", 0)}),
+       "Largest scale"},
+  };
+  for (const auto& c : cases) {
+    ServerRun run = run_filters("ms_badparam", m, {c.filter}, {"-o", "out.ply"});
+    EXPECT_FALSE(run.crashed) << run.output;
+    EXPECT_NE(run.output.find(c.expect), std::string::npos) << c.expect << ": " << run.output;
+  }
+}
+
 class MultiscaleBadInput : public ::testing::TestWithParam<int> {};
 
 TEST_P(MultiscaleBadInput, ClearMessageOrSuccessNeverACrash) {
