@@ -1,5 +1,6 @@
 #include "reliefkit/multiscale.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "reliefkit/curve_selection.h"
@@ -104,27 +105,53 @@ MultiscaleRidgeValleys multiscale_ridges_valleys(const TriMesh& mesh, OptimalSca
   return r;
 }
 
+std::vector<double> noise_tilt_at_scales(const OptimalScale& s, double final_smoothing_edges, long long faces) {
+  const double h = s.scale.edge;
+  const int nl = static_cast<int>(s.levels.size()), nv = static_cast<int>(s.sigma.size());
+  std::vector<double> level_tilt(static_cast<size_t>(nl)), u(static_cast<size_t>(nl));
+  for (int k = 0; k < nl; ++k) {
+    u[k] = std::log(s.levels[k] / h);
+    // The level's smoothing and the final one, as Gaussian widths add.
+    level_tilt[k] = std::max(noise_tilt(s.noise, std::hypot(s.levels[k] / h, final_smoothing_edges), noise_patch_cells(faces)), 1e-12);
+  }
+  std::vector<double> tilt(static_cast<size_t>(nv), level_tilt.front());
+#pragma omp parallel for schedule(static)
+  for (int v = 0; v < nv; ++v) {
+    if (!(s.sigma[v] > 0)) continue;
+    const double x = std::clamp(std::log(s.sigma[v] / h), u.front(), u.back());
+    int k = 0;
+    while (k + 2 < nl && u[k + 1] < x) ++k;
+    const int k1 = std::min(k + 1, nl - 1);
+    const double w = u[k1] > u[k] ? std::clamp((x - u[k]) / (u[k1] - u[k]), 0.0, 1.0) : 0.0;
+    tilt[v] = std::exp((1 - w) * std::log(level_tilt[k]) + w * std::log(level_tilt[k1]));  // log-linear in log σ
+  }
+  return tilt;
+}
+
 MultiscaleReliefEdges multiscale_relief_edges(const TriMesh& mesh, OptimalScaleOptions opt, ReliefEdgeParams params) {
   params.validate();
   opt.curve = ScaleStrength::ReliefEdges;
   MultiscaleReliefEdges r;
   TriMesh smoothed = optimally_smoothed(mesh, opt, r.scale);
+  // The detector on the smoothed surface, without pre-smoothing of its own, told what varies with
+  // the scale (each measured on the test relief, docs/multiscale.md):
+  // - the base: the surface at kReliefBaseFactor x the largest scale — its normals for the tilt, its
+  //   shape operator for G (on a curved object a wide step's G crossed zero off its centre);
+  // - the noise: the tilt noise leaves at each vertex's own scale (one threshold for all let the
+  //   fine scales' noise through or cut the coarse scales' soft steps);
+  // - the fit-error radius: kFitRadiusWidths x the vertex's scale (a soft step read at 10 edge
+  //   lengths does not fit within the fine features' 4);
+  // - only crossings where the slope is steepest (a soft footprint's flat wiggles crossed too).
   params.presmoothing = Length::in_edges(0);
+  params.given_base_normals = &r.scale.base_normal;
+  params.given_base_shape = &r.scale.base_shape;
+  const std::vector<double> noise = noise_tilt_at_scales(r.scale, opt.final_smoothing_edges, mesh.n_faces());
+  params.vertex_noise_tilt = &noise;
+  params.vertex_feature_width = &r.scale.sigma;
+  params.steepest_only = true;
+  params.tilt_across = true;
   r.curves = compute_relief_edges(smoothed, params);
-  // The detector's noise threshold comes from the noise it measures on the surface it is given,
-  // where most of it is gone, and is calibrated on single-scale smoothing. Measured instead on
-  // this surface: the tilt of the areas no feature anchors is noise alone; strong edges must tilt
-  // kNoiseTiltFactor x its 99th percentile (as noise_tilt asks of single-scale edges).
-  if (params.strong_angle == 0) {
-    std::vector<double> tilt;
-    for (size_t v = 0; v < r.scale.selected.size(); ++v)
-      if (!(r.scale.selected[v] > 0) && std::isfinite(r.curves.angle[v])) tilt.push_back(r.curves.angle[v]);
-    if (tilt.size() >= 100) r.noise_angle = kNoiseTiltFactor * percentile(tilt, 0.99);
-    if (r.curves.strong_angle < r.noise_angle) {
-      params.strong_angle = r.noise_angle;
-      r.curves = compute_relief_edges(smoothed, params);
-    }
-  }
+  r.noise_angle = r.curves.noise_angle;
   place_on_mesh(mesh, r.curves.edges);
   r.scale.smoothed = std::move(smoothed.vertices);
   return r;

@@ -192,21 +192,23 @@ OptimalScale optimal_scale(const TriMesh& mesh, const OptimalScaleOptions& opt) 
   CurvatureOptions co;
   co.derivatives = false;
   co.topology = &topo;
-  // The base surface (at twice the largest scale): its shape operator (ridges & valleys measure
-  // the feature's curvature over it) and its positions (see the shrink rate below).
+  // The base surface (kRidgeBaseFactor / kReliefBaseFactor x the largest scale): its shape
+  // operator (ridges & valleys measure the feature's curvature over it; relief edges G), its
+  // normals (the relief edges' tilt) and its positions (see the shrink rate below).
   std::vector<Mat3> base;
   std::vector<Vec3> base_position;
-  const double tau_base = 0.5 * 4 * out.levels.back() * out.levels.back();
+  const double base_factor = relief ? kReliefBaseFactor : kRidgeBaseFactor;
+  const double tau_base = 0.5 * base_factor * base_factor * out.levels.back() * out.levels.back();
   {
     ScaleSpaceOptions bo = so;
     bo.substeps = 2;
-    out.base_space = scale_space(mesh, {2 * out.levels.back()}, bo, [&](int, const TriMesh& smoothed) {
+    out.base_space = scale_space(mesh, {base_factor * out.levels.back()}, bo, [&](int, const TriMesh& smoothed) {
       if (opt.progress) opt.progress(2, "Optimal scale: base surface");
       const Curvature c = compute_curvature(smoothed, co);
       sized(base, size_t(nv));
 #pragma omp parallel for schedule(static)
       for (int v = 0; v < nv; ++v) base[v] = shape_tensor(c, v);
-      if (opt.smoothed_surface) base_position = smoothed.vertices;
+      if (opt.smoothed_surface) base_position = smoothed.vertices, out.base_normal = c.normal;
     });
   }
   co.derivatives = relief;
@@ -237,7 +239,7 @@ OptimalScale optimal_scale(const TriMesh& mesh, const OptimalScaleOptions& opt) 
     OptimalScaleOptions po = opt;
     po.noise_floor = 0, po.fill = false, po.dominant_reach = 0, po.smoothed_surface = false, po.progress = nullptr;
     po.topology = nullptr;
-    const TriMesh patch = noise_patch(out.noise.relative, noise_patch_cells(mesh.n_faces()));
+    const TriMesh patch = noise_patch(std::max(out.noise.relative, kMinScaleNoise), noise_patch_cells(mesh.n_faces()));
     const OptimalScale ps = optimal_scale(patch, po);
     for (int k = 0; k < nl; ++k) out.level_noise[k] = ps.level_noise[std::min<size_t>(k, ps.level_noise.size() - 1)];
   } else if (opt.noise_floor == 0) {  // this is the noise patch: measure
@@ -340,7 +342,6 @@ OptimalScale optimal_scale(const TriMesh& mesh, const OptimalScaleOptions& opt) 
   } else {
     out.sigma = out.selected;
   }
-
   if (opt.smoothed_surface) {
     if (opt.progress) opt.progress(93, "Optimal scale: optimally smoothed surface");
     sized(out.smoothed, size_t(nv));

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 
 #include "reliefkit/cubic_form.h"
 #include "reliefkit/memory.h"
@@ -140,6 +141,13 @@ EdgeFrames edge_frames(const ReliefEdgeParams& p, ReliefEdgeResult& r) {
   return e;
 }
 
+// The given base's normal curvature along g (principal frame of v); 0 without a given base.
+double base_curvature(const ReliefEdgeParams& p, const Curvature& c, int v, const Vec2& g) {
+  if (!p.given_base_shape) return 0;
+  const Vec3 t = g.x() * c.dir1[v] + g.y() * c.dir2[v];
+  return t.dot((*p.given_base_shape)[v] * t);
+}
+
 // Step 4: the edge direction g (restricted to the window around the base direction), the edge
 // intensity, the model's fit error and G = g^T II g. Returns g in the principal frame.
 std::vector<Vec2> edge_model(const ReliefEdgeParams& p, const EdgeFrames& e, ReliefEdgeResult& r) {
@@ -162,16 +170,18 @@ std::vector<Vec2> edge_model(const ReliefEdgeParams& p, const EdgeFrames& e, Rel
     }
     const double f = hh.f(g.x(), g.y());
     r.alpha[v] = f / kA;
-    r.fit_error[v] = edge_fit_error(c.dcurv[v], c.k1[v], c.k2[v], f, r.fit_radius);
+    const double radius =
+        p.vertex_feature_width ? std::max(r.fit_radius, kFitRadiusWidths * (*p.vertex_feature_width)[v]) : r.fit_radius;
+    r.fit_error[v] = edge_fit_error(c.dcurv[v], c.k1[v], c.k2[v], f, radius);
     g2[v] = g;
-    r.G[v] = c.k1[v] * g.x() * g.x() + c.k2[v] * g.y() * g.y();
+    r.G[v] = c.k1[v] * g.x() * g.x() + c.k2[v] * g.y() * g.y() - base_curvature(p, c, v, g);
   }
   return g2;
 }
 
 // Step 5, edge smoothing (eq. 4.18): smooth G, then recover directions giving the smoothed value,
 // nearest to the current ones; where none exists, the nearest value.
-void smooth_edges(const TriMesh& mesh, std::vector<Vec2>& g2, ReliefEdgeResult& r) {
+void smooth_edges(const TriMesh& mesh, const ReliefEdgeParams& p, std::vector<Vec2>& g2, ReliefEdgeResult& r) {
   const Curvature& c = r.curvature;
   const int nv = static_cast<int>(c.k1.size());
   std::vector<double> Gs = r.G;
@@ -180,16 +190,19 @@ void smooth_edges(const TriMesh& mesh, std::vector<Vec2>& g2, ReliefEdgeResult& 
   for (int v = 0; v < nv; ++v) {
     const double k1 = c.k1[v], k2 = c.k2[v];
     Vec2 g = g2[v];
+    // With a given base, G is over the base's curvature along the current g (which changes
+    // little in the step below).
+    const double b = base_curvature(p, c, v, g), target = Gs[v] + b;
     if (k1 - k2 > 1e-12 * (std::abs(k1) + std::abs(k2))) {
-      double c2 = std::clamp((Gs[v] - k2) / (k1 - k2), 0.0, 1.0);
+      double c2 = std::clamp((target - k2) / (k1 - k2), 0.0, 1.0);
       double cs = std::sqrt(c2), sn = std::sqrt(1 - c2);
       Vec2 cand(std::copysign(cs, g.x()), std::copysign(sn, g.y()));  // the candidate nearest g
       // Where the smoothed value is out of reach the nearest direction is a principal one,
       // which can be far from g; a turn of more than the consistency angle would break the
       // curve there, so such vertices keep their direction.
-      if (cand.dot(g) >= kCosMaxTurn || (Gs[v] >= k2 && Gs[v] <= k1)) {
+      if (cand.dot(g) >= kCosMaxTurn || (target >= k2 && target <= k1)) {
         g = cand;
-        r.G[v] = k1 * c2 + k2 * (1 - c2);
+        r.G[v] = k1 * c2 + k2 * (1 - c2) - b;
       }
     }
     g2[v] = g;
@@ -205,32 +218,45 @@ void smooth_edges(const TriMesh& mesh, std::vector<Vec2>& g2, ReliefEdgeResult& 
 // scan the noise's crossings outnumber the relief's and pulled the percentile (and with it the
 // threshold, to 1.2 degrees at 1 M faces) down to where the feet and tops of the steps passed as
 // edges.
-void tilt_thresholds(const TriMesh& mesh, const ReliefEdgeParams& p, const Polylines& all, ReliefEdgeResult& r) {
-  r.noise_angle = noise_tilt(r.noise, r.presmoothing / r.scale.edge, noise_patch_cells(mesh.n_faces()));
+void tilt_thresholds(const TriMesh& mesh, const ReliefEdgeParams& p, const Polylines& all,
+                     const std::vector<double>& point_noise, ReliefEdgeResult& r) {
+  if (p.vertex_noise_tilt) {  // the smallest (reported; each point has its own)
+    r.noise_angle = 0;
+    bool first = true;
+    for (double x : *p.vertex_noise_tilt)
+      if (std::isfinite(x) && (first || x < r.noise_angle)) r.noise_angle = x, first = false;
+  } else {
+    r.noise_angle = noise_tilt(r.noise, r.presmoothing / r.scale.edge, noise_patch_cells(mesh.n_faces()));
+  }
   std::vector<double> above_noise;
   for (const auto& sg : all.segments) {
     const double a = 0.5 * (all.strength[sg[0]] + all.strength[sg[1]]);
+    const double nz = point_noise.empty() ? r.noise_angle : 0.5 * (point_noise[sg[0]] + point_noise[sg[1]]);
     r.steepest_crossing = std::max(r.steepest_crossing, a);
-    if (a > r.noise_angle) above_noise.push_back(a);
+    if (a > nz) above_noise.push_back(a);
   }
   r.automatic_angle =
       automatic_curve_threshold(median_positive(counted_values(r.angle, r.scale.counts)), std::move(above_noise));
-  r.strong_angle = p.strong_angle > 0 ? p.strong_angle : std::max(r.automatic_angle, r.noise_angle);
+  r.strong_angle = p.strong_angle > 0 ? p.strong_angle
+                   : point_noise.empty() ? std::max(r.automatic_angle, r.noise_angle)
+                                         : r.automatic_angle;
   r.weak_angle = p.weak_angle_h > 0 ? p.weak_angle_h : 0.5 * r.strong_angle;
 }
 
 // Step 7: two-dimensional hysteresis (fit error and tilt), then the gaps it leaves are bridged —
 // pieces whose ends face each other across a small gap are joined (on the coin the share of curve
 // length in pieces under 10 edge lengths fell from 0.60) — and short fragments dropped.
-void select_edges(const ReliefEdgeParams& p, const Polylines& all, ReliefEdgeResult& r) {
+void select_edges(const ReliefEdgeParams& p, const Polylines& all, const std::vector<double>& point_noise,
+                  ReliefEdgeResult& r) {
   const std::vector<double> err = interpolate_at_points(all, r.fit_error);
   const size_t ns = all.segments.size();
   std::vector<char> strong(ns), weak(ns);
   for (size_t k = 0; k < ns; ++k) {
     const auto& s = all.segments[k];
     double e = 0.5 * (err[s[0]] + err[s[1]]), a = 0.5 * (all.strength[s[0]] + all.strength[s[1]]);
-    strong[k] = e <= p.strong_error && a >= r.strong_angle;
-    weak[k] = e <= p.weak_error && a >= r.weak_angle;
+    const double nz = point_noise.empty() || p.strong_angle > 0 ? 0.0 : 0.5 * (point_noise[s[0]] + point_noise[s[1]]);
+    strong[k] = e <= p.strong_error && a >= std::max(r.strong_angle, nz);
+    weak[k] = e <= p.weak_error && a >= std::max(r.weak_angle, 0.5 * nz);
   }
   Polylines kept = hysteresis(all, strong, weak);
   r.links = link_gaps(kept, p.link_gap_edges * r.scale.edge, kLinkTurn);
@@ -248,17 +274,25 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
 
   // Step 2: the base surface's normals.
   if (p.progress) p.progress(60, "Base normals");
-  BaseNormalOptions bo;
-  bo.scale = r.base_scale;
-  bo.topology = r.topology.get();
-  r.base = estimate_base_normals(mesh, c.normal, bo);
+  auto wrong_size = [&](const auto* x) { return x && x->size() != c.normal.size(); };
+  if (wrong_size(p.given_base_normals) || wrong_size(p.given_base_shape) || wrong_size(p.vertex_noise_tilt) ||
+      wrong_size(p.vertex_feature_width))
+    throw std::invalid_argument("compute_relief_edges: a per-vertex input has another vertex count than the mesh");
+  if (p.given_base_normals) {
+    r.base.normal = *p.given_base_normals;
+  } else {
+    BaseNormalOptions bo;
+    bo.scale = r.base_scale;
+    bo.topology = r.topology.get();
+    r.base = estimate_base_normals(mesh, c.normal, bo);
+  }
 
   if (p.progress) p.progress(80, "Edge directions");
   const EdgeFrames frames = edge_frames(p, r);
   std::vector<Vec2> g2 = edge_model(p, frames, r);
   if (r.edge_smoothing > 0) {
     if (p.progress) p.progress(88, "Edge smoothing");
-    smooth_edges(mesh, g2, r);
+    smooth_edges(mesh, p, g2, r);
   }
   sized(r.direction, c.k1.size(), Vec3(Vec3::Zero()));
 #pragma omp parallel for schedule(static)
@@ -269,13 +303,35 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
   DirectionalFieldView f;
   f.direction = r.direction.data();
   f.value = r.G.data();
-  f.strength = r.angle.data();
+  std::vector<double> across;
+  if (p.tilt_across) {
+    sized(across, c.k1.size());
+#pragma omp parallel for schedule(static)
+    for (int v = 0; v < mesh.n_vertices(); ++v) {
+      const Vec3& n = c.normal[v];
+      const Vec3& nb = r.base.normal[v];
+      const double s = std::abs((nb - n * n.dot(nb)).dot(r.direction[v]));
+      across[v] = std::asin(std::clamp(s, 0.0, 1.0));
+    }
+  }
+  f.strength = p.tilt_across ? across.data() : r.angle.data();
   f.size = c.k1.size();
   f.axial = false;
-  f.value_along = [&c](int v, const Vec3& t) { return c.normal_curvature(v, t); };
-  const Polylines all = extract_zero_crossings(mesh, c.normal, f, ZeroCrossingOptions{});
-  tilt_thresholds(mesh, p, all, r);
-  select_edges(p, all, r);
+  f.value_along = [&c, &p](int v, const Vec3& t) {
+    const Vec2 u(t.dot(c.dir1[v]), t.dot(c.dir2[v]));  // in v's principal frame, unit
+    const double n = u.norm();
+    return n > 0 ? c.normal_curvature(v, t) - base_curvature(p, c, v, u / n) : 0.0;
+  };
+  ZeroCrossingOptions zo;
+  if (p.steepest_only)  // G < 0 at a step's foot, > 0 at its top: it rises along g (up the slope)
+    zo.accept_face = [&mesh](int face, const double val[3], const Vec3 dir[3]) {
+      return face_gradient(mesh, face, val).dot(dir[0] + dir[1] + dir[2]) > 0;
+    };
+  const Polylines all = extract_zero_crossings(mesh, c.normal, f, zo);
+  const std::vector<double> point_noise =
+      p.vertex_noise_tilt ? interpolate_at_points(all, *p.vertex_noise_tilt) : std::vector<double>();
+  tilt_thresholds(mesh, p, all, point_noise, r);
+  select_edges(p, all, point_noise, r);
   return r;
 }
 

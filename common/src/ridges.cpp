@@ -33,14 +33,7 @@ Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, dou
   // the gradient of the linearly interpolated derivative across the face, against the face's
   // mean direction.
   o.accept_face = [&mesh, valleys](int face, const double val[3], const Vec3 dir[3]) {
-    const auto& fv = mesh.faces[face];
-    const Vec3 &p0 = mesh.vertices[fv[0]], &p1 = mesh.vertices[fv[1]], &p2 = mesh.vertices[fv[2]];
-    Vec3 n = (p1 - p0).cross(p2 - p0);
-    double a2 = n.squaredNorm();
-    if (!(a2 > 0)) return false;
-    // grad = sum_i val_i (n x e_i) / |n|^2, e_i the edge opposite vertex i (counter-clockwise).
-    Vec3 grad = (val[0] * n.cross(p2 - p1) + val[1] * n.cross(p0 - p2) + val[2] * n.cross(p1 - p0)) / a2;
-    double along = grad.dot(dir[0] + dir[1] + dir[2]);
+    const double along = face_gradient(mesh, face, val).dot(dir[0] + dir[1] + dir[2]);
     return valleys ? along > 0 : along < 0;
   };
   return extract_zero_crossings(mesh, c.normal, f, o);

@@ -268,6 +268,16 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
   return res;
 }
 
+Vec3 face_gradient(const TriMesh& mesh, int face, const double val[3]) {
+  const auto& fv = mesh.faces[face];
+  const Vec3 &p0 = mesh.vertices[fv[0]], &p1 = mesh.vertices[fv[1]], &p2 = mesh.vertices[fv[2]];
+  const Vec3 n = (p1 - p0).cross(p2 - p0);
+  const double a2 = n.squaredNorm();
+  if (!(a2 > 0)) return Vec3::Zero();
+  // grad = sum_i val_i (n x e_i) / |n|^2, e_i the edge opposite vertex i (counter-clockwise).
+  return (val[0] * n.cross(p2 - p1) + val[1] * n.cross(p0 - p2) + val[2] * n.cross(p1 - p0)) / a2;
+}
+
 std::vector<double> interpolate_at_points(const Polylines& c, const std::vector<double>& f) {
   std::vector<double> out(c.points.size(), 0.0);
   for (size_t i = 0; i < c.points.size() && i < c.point_edge.size(); ++i)

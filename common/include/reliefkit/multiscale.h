@@ -19,7 +19,7 @@ struct MultiscaleRidgeValleys {
 struct MultiscaleReliefEdges {
   OptimalScale scale;
   ReliefEdgeResult curves;   // edges on the input mesh; per-vertex fields of the smoothed surface
-  double noise_angle = 0;    // kNoiseTiltFactor x the 99th percentile of the tilt where no feature is (radians)
+  double noise_angle = 0;    // the smallest per-vertex noise tilt (at the largest scale; radians)
 };
 
 /// Multiplies each curve point's strength by (σ / h)^{2γ} h^power, σ the point's scale (interpolated
@@ -39,6 +39,10 @@ constexpr double kBankRatio = 0.5;
 /// Drops the segments both of whose points lie in the footprint of a feature of `flanked_sign`
 /// (+1 convex: drops valleys along crests; -1 concave: ridges along grooves) weaker than kBankRatio x it.
 void drop_banks(Polylines& curves, const OptimalScale& scale, int flanked_sign);
+
+/// Per vertex, the tilt noise leaves on the optimally smoothed surface (noise_tilt at each level's
+/// scale combined with the final smoothing, interpolated log-linearly in log σ at the vertex's scale).
+std::vector<double> noise_tilt_at_scales(const OptimalScale& scale, double final_smoothing_edges, long long faces);
 
 /// `scale.curve` is set to the detector's strength; `params.presmoothing` is ignored (the optimal
 /// scale replaces it).

@@ -49,6 +49,28 @@ struct ReliefEdgeParams {
   // Two-dimensional hysteresis: strong points seed, weak points connected to them are kept.
   double strong_error = 0.5, weak_error = 0.8;              // normalised fit error, at most
   double strong_angle = 0, weak_angle_h = 0;                // radians, at least; 0: automatic
+  /// A base surface given by the caller (multi-scale detection: the surface at twice the largest
+  /// scale), per vertex: its unit normals replace the estimated base normals, and G is measured
+  /// over its shape operator (world coordinates), g^T (II - II_base) g — the curvature of the
+  /// local image alone (thesis fig. 4.2). On a curved base a wide soft step's curvature crosses
+  /// zero where it cancels the base's, off the step's centre (4 edge lengths on the test cylinder,
+  /// radius 286 edge lengths, for a step 10 edge lengths wide). Both empty: estimated as usual.
+  const std::vector<Vec3>* given_base_normals = nullptr;
+  const std::vector<Mat3>* given_base_shape = nullptr;
+  /// Per vertex, the noise tilt where the surface was smoothed by different amounts (multi-scale:
+  /// noise_tilt at each vertex's own scale, radians): strong points must tilt more, weak ones
+  /// half as much, besides the global thresholds; the global noise_tilt is then not applied.
+  const std::vector<double>* vertex_noise_tilt = nullptr;
+  /// Per vertex, the width of the features there (multi-scale: each vertex's own scale, mesh
+  /// units): the fit-error radius is at least kFitRadiusWidths x it (see kFitRadiusWidths).
+  const std::vector<double>* vertex_feature_width = nullptr;
+  /// Keep only the crossings where the slope is steepest (G rising up the slope, g), not those
+  /// where it is least steep (between two steps, or a wide step's noise wiggles).
+  bool steepest_only = false;
+  /// The crossings' strength is the tilt across the edge (the slope along g: asin of the base
+  /// normal's tangential part along g) instead of the whole tilt: a seam or wiggle crossing a
+  /// slope tilts with the slope, not across itself.
+  bool tilt_across = false;
   Progress progress = nullptr;
   /// Throws InputError naming the first parameter out of its range.
   void validate() const;

@@ -81,6 +81,10 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
 Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& normals,
                                  const DirectionalField& field, const ZeroCrossingOptions& options = {});
 
+/// The gradient over a face of the linear interpolation of three values at its corners (zero on
+/// a degenerate face): accept_face tests use it to tell maxima from minima.
+Vec3 face_gradient(const TriMesh& mesh, int face, const double value[3]);
+
 /// Linear interpolation of a per-vertex quantity at the curve points.
 std::vector<double> interpolate_at_points(const Polylines& curves, const std::vector<double>& per_vertex);
 
