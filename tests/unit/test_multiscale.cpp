@@ -161,7 +161,7 @@ TEST(Multiscale, ReliefEdgesFollowTheStepsOfNoisyDiscReliefs) {
 // apart but leaves the soft step in noise; coarse smoothing merges the narrow band's two steps into
 // one bump (its edges then sit at ±σ, off their lines) and still shifts the soft step (on the
 // curved cylinder, G crosses zero where it cancels the base's curvature). 20 % noise, and 2 %,
-// where nearly every feature is significant and seams between scales were the risk (kFillSmoothness).
+// where nearly every feature is significant and seams between scales were the risk (kReliefFillSmoothness).
 TEST(Multiscale, ReliefEdgesOfASharpNarrowBandAndAWideSoftStep) {
   const double h = 2 * M_PI / kAround;
   std::vector<AxialFeature> bands;

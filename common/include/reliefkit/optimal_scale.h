@@ -75,21 +75,24 @@ constexpr double kRidgeBaseFactor = 2.0;
 constexpr double kReliefBaseFactor = 4.0;
 
 /// μ of eq. 5.3 (below, OptimalScaleOptions::fill_smoothness): the scale field's smoothness.
-/// Where the scale changes along a feature the assembled surface shows a seam, and relief edges
-/// (third derivatives) follow the seams. A step's t C is flat around its peak in log t, so the
+/// Relief edges: where the scale changes along a feature the assembled surface shows a seam, and
+/// relief edges (third derivatives) follow the seams. A step's t C is flat around its peak in log t, so the
 /// anchors along one wide soft step selected anywhere from 8.9 to 12.4 edge lengths; on the test
 /// relief (a sharp narrow band and a soft step 8 edge lengths wide) the relief edges' precision
 /// was, for μ = 1 / 100 / 1000 / 10000: 0.61 / 1.00 / 1.00 / 0.95 at 20 % noise and
 /// – / 0.56 / 0.96 / 1.00 at 2 % (fewer anchors are significant in strong noise, so the seams
-/// show most on clean scans like the coin). Ridges & valleys: F1 0.985 (μ = 1), 0.991 (100).
-/// With (a f)² ≤ 81 at the strongest anchors, the scale still changes within about 3.5 edge
-/// lengths (√(μ / 81)) from a fine to a coarse feature.
-constexpr double kFillSmoothness = 1000.0;
+/// show most on clean scans like the coin). With (a f)² ≤ 81 at the strongest anchors, the scale
+/// still changes within about 3.5 edge lengths (√(μ / 81)) from a fine to a coarse feature.
+/// Ridges & valleys keep μ = 1: F1 0.985 (μ = 1), 0.991 (100), 0.992 (1000), but at μ = 1000
+/// the fill needs a Cholesky factorisation (3.8 s at 1 M faces instead of conjugate gradients'
+/// fraction of a second).
+constexpr double kReliefFillSmoothness = 1000.0;
+constexpr double kRidgeFillSmoothness = 1.0;
 
 /// Noise below this share of the edge length counts as this much in the scale selection's
 /// significance test (level_noise): on a noise-free mesh every local maximum of t^γ f anchored a
 /// scale (the soft step's tails too), and the seams between them drew false relief edges
-/// (precision 0.74 at no noise; with this floor 0.98). The coin's scan measures 2.0 %.
+/// (relief edges' precision 0.74 at no noise; with this floor 0.98). The coin's scan measures 2.0 %.
 constexpr double kMinScaleNoise = 0.02;
 
 /// γ for ridges & valleys: the thesis' 1 (selects √2 x a Gaussian ridge's width).
@@ -112,7 +115,11 @@ struct OptimalScaleOptions {
     return gamma != 0 ? gamma : curve == ScaleStrength::ReliefEdges ? kReliefEdgeGamma : kRidgeGamma;
   }
   double fill_weight = 9.0;                           // a f_max of eq. 5.3
-  double fill_smoothness = kFillSmoothness;            // μ
+  double fill_smoothness = 0;                         // μ; 0: kRidgeFillSmoothness / kReliefFillSmoothness
+  double effective_fill_smoothness() const {
+    return fill_smoothness > 0 ? fill_smoothness
+                               : curve == ScaleStrength::ReliefEdges ? kReliefFillSmoothness : kRidgeFillSmoothness;
+  }
   double featureless_pull = 1e-4;                     // ε
   bool fill = true;                                   // eq. 5.3; false: the raw selection (0 where none)
   double bank_reach = 4.5;       // a feature's banks lie within this many times its scale (graph distance)
