@@ -68,8 +68,9 @@ void add_scale_range(RichParameterList& par) {
   add_length(par, "min_scale", Length::automatic(), "Smallest scale",
              "The finest smoothing considered (a Gaussian, in edge lengths). auto: 1 edge length.");
   add_length(par, "max_scale", Length::automatic(), "Largest scale",
-             "The widest smoothing considered (edge lengths). auto: 16 edge lengths; lowered on objects "
-             "smaller than 8 times it (the log says so).");
+             "The widest smoothing considered (edge lengths). auto: 16 edge lengths, at most 1/32 of the "
+             "object's size (a small curved object's own shape would read as a feature); a set value is "
+             "lowered on objects smaller than 8 times it (the log says so).");
   par.addParam(RichInt("levels", 2, "Scales per doubling",
                        "How many scales are computed per doubling of the scale (1-8); more is slower and "
                        "only slightly more precise (the peak between scales is interpolated)."));
@@ -97,6 +98,7 @@ OptimalScaleOptions resolve(FilterCall& call, const ScaleRange& r, const MeshSca
   };
   o.min_scale_edges = edges(r.lo, kAutoMinScale);
   o.max_scale_edges = edges(r.hi, kAutoMaxScale);
+  o.max_scale_auto = r.hi.is_auto();
   o.levels_per_octave = r.levels;
   o.progress = call.progress;
   if (!(o.max_scale_edges >= o.min_scale_edges))
@@ -130,7 +132,8 @@ QString histogram(const OptimalScale& s) {
               .arg(100.0 * featureless / n, 0, 'f', 1)
               .arg(QString::fromStdString(s.fill_solve.summary()));
   if (s.max_scale_lowered)
-    line += QString(" The largest scale was lowered to %1 edge lengths: the object is only %2 edge lengths across.")
+    line += QString(" The largest scale was lowered to %1 edge lengths for an object %2 edge lengths across "
+                    "(auto: at most 1/32 of it; a set value: 1/8).")
                 .arg(s.levels.back() / h, 0, 'f', 1)
                 .arg(s.scale.object_size / h, 0, 'f', 0);
   return line;

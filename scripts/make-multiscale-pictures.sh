@@ -15,5 +15,13 @@ coin="$here/examples/data/penny.ply"
 for what in ms_ridges ms_relief; do
   convert "$out/penny_${what}_full.png" -crop 700x640+75+140 +repage "$here/docs/img/scan_penny_${what}.png"
 done
+# The statuette and the bunny (made by make-doc-pictures.sh): multi-scale relief edges at defaults.
+for m in fertility bunny; do
+  src="$out/$m.ply"; [ "$m" = bunny ] && src="$out/stanford-bunny.ply"
+  "$here/scripts/meshlabserver" -i "$src" -o "$out/${m}_ms_relief.obj" -l 3 -s "$here/examples/multiscale.mlx" \
+    >"$out/${m}_multiscale.log" 2>&1
+  "$here/scripts/screenshot.sh" "$out/${m}_ms_relief_full.png" -- "$out/${m}_shaded.ply" "$out/${m}_ms_relief.obj"
+  convert "$out/${m}_ms_relief_full.png" -crop 700x640+75+140 +repage "$here/docs/img/scan_${m}_ms_relief.png"
+done
 grep -E "Optimal scale|Multi-scale" "$out/penny_multiscale.log" | sed 's/^LOG: [0-9]* //' || true
 echo "pictures in docs/img/scan_penny_ms_*.png"

@@ -169,7 +169,8 @@ OptimalScale optimal_scale(const TriMesh& mesh, const OptimalScaleOptions& opt) 
                      " edge lengths (multi-scale analysis needs an object at least " +
                      std::to_string(int(kMinObjectScales)) + " times the smallest scale). Nothing was changed.");
   OptimalScaleOptions fitted = opt;
-  fitted.max_scale_edges = std::min(opt.max_scale_edges, size_edges / kMinObjectScales);
+  fitted.max_scale_edges = std::min(opt.max_scale_edges, size_edges / (opt.max_scale_auto ? kAutoMaxScaleObjectFraction
+                                                                                        : kMinObjectScales));
   const std::vector<double> edges = scale_levels(opt.min_scale_edges, std::max(opt.min_scale_edges, fitted.max_scale_edges), opt.levels_per_octave);
   out.max_scale_lowered = fitted.max_scale_edges < opt.max_scale_edges;
   for (double e : edges) out.levels.push_back(e * h);

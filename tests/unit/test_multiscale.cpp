@@ -199,3 +199,22 @@ TEST(Multiscale, ReliefEdgesOfASharpNarrowBandAndAWideSoftStep) {
     EXPECT_GE(multi.f1, best + 0.15);
   }
 }
+
+// The automatic largest scale (the filters' "auto") is at most 1/32 of a small object's size: on a
+// sphere 88 edge lengths across it is lowered to 2.76 (a set largest scale only to 1/8 of it: 11.0).
+TEST(Multiscale, AutomaticLargestScaleFollowsTheObjectsSize) {
+  const TriMesh ball = rktest::sphere(1.0, 5);
+  const MeshScale ms = mesh_scale(ball);
+  const double size = ms.object_size / ms.edge;
+  for (bool automatic : {true, false}) {
+    OptimalScaleOptions o;
+    o.max_scale_auto = automatic;
+    o.fill = false;
+    const OptimalScale s = optimal_scale(ball, o);
+    const double expected = std::min(16.0, size / (automatic ? kAutoMaxScaleObjectFraction : kMinObjectScales));
+    std::printf("%s: object %.0f edge lengths, largest scale %.2f\n", automatic ? "auto" : "16 set", size,
+                s.levels.back() / s.scale.edge);
+    EXPECT_NEAR(s.levels.back() / s.scale.edge, expected, 1e-6 * expected);
+    EXPECT_TRUE(s.max_scale_lowered);
+  }
+}
