@@ -8,13 +8,15 @@
 //   vertices x 3 coordinates (f32, or i8 when flags bit 3 is set: a coarse grid, so that
 //   vertices coincide) | faces x 3 u8 vertex indices (mod vertices + 1: one past the end happens)
 // flags bits 0-1: which core (demarcating, ridges and valleys, relief edges, curvature);
-// bit 2: pre-smoothing given (else "auto").
+// bit 2: pre-smoothing given (else "auto"); bit 4: ridges and valleys / relief edges run
+// multi-scale (the pre-smoothing value is then the smallest scale).
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
 
 #include "reliefkit/demarcating.h"
+#include "reliefkit/multiscale.h"
 #include "reliefkit/relief_edges.h"
 #include "reliefkit/curvature.h"
 #include "reliefkit/repair.h"
@@ -41,6 +43,18 @@ void check_finite(const Polylines& p) {
     if (!x.allFinite()) std::abort();
   for (double s : p.strength)
     if (std::isnan(s)) std::abort();
+}
+
+// The multi-scale range: the smallest scale from the input when given (the largest 16, or the
+// smallest when above), else the defaults.
+OptimalScaleOptions scales(uint8_t flags, float smallest) {
+  OptimalScaleOptions o;
+  if (flags & 4) {
+    o.min_scale_edges = smallest;
+    if (std::isfinite(smallest) && smallest > o.max_scale_edges) o.max_scale_edges = smallest;
+  }
+  o.max_scale_auto = true;
+  return o;
 }
 
 }  // namespace
@@ -76,7 +90,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         RidgeValleyParams p;
         p.presmoothing = smooth;
         p.relative_threshold = threshold;
-        RidgeValleyResult r = compute_ridges_valleys(m, p);
+        RidgeValleyResult r = (flags & 16) ? multiscale_ridges_valleys(m, scales(flags, presmoothing), p).curves
+                                           : compute_ridges_valleys(m, p);
         check_finite(r.ridges);
         check_finite(r.valleys);
         break;
@@ -85,7 +100,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         ReliefEdgeParams p;
         p.presmoothing = smooth;
         p.strong_angle = std::isfinite(threshold) ? std::fabs(threshold) : threshold;
-        check_finite(compute_relief_edges(m, p).edges);
+        check_finite((flags & 16) ? multiscale_relief_edges(m, scales(flags, presmoothing), p).curves.edges
+                                  : compute_relief_edges(m, p).edges);
         break;
       }
       default: {
