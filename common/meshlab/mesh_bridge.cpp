@@ -61,9 +61,10 @@ MeshModel* add_curve_layer(MeshDocument& doc, const QString& label, const Polyli
 }
 
 MeshModel* add_surface_layer(MeshDocument& doc, const QString& label, MeshModel& source, const View& view,
-                             const std::vector<Vec3>& positions) {
+                             const std::vector<Vec3>& positions, const std::vector<double>* quality) {
   MeshModel* layer = doc.addNewMesh("", label, false);
   layer->updateDataMask(&source);
+  if (quality) layer->updateDataMask(MeshModel::MM_VERTQUALITY);
   // MeshCopy keeps the live vertices in order: a source vertex's index in the copy is the number
   // of live vertices before it.
   std::vector<int> copy_index(source.cm.vert.size(), -1);
@@ -76,6 +77,7 @@ MeshModel* add_surface_layer(MeshDocument& doc, const QString& label, MeshModel&
     if (k < 0 || k >= int(layer->cm.vert.size())) return;
     const Vec3& p = positions[size_t(i)];
     layer->cm.vert[size_t(k)].P() = Point3m(Scalarm(p.x()), Scalarm(p.y()), Scalarm(p.z()));
+    if (quality) layer->cm.vert[size_t(k)].Q() = Scalarm((*quality)[size_t(i)]);
   });
   vcg::tri::UpdateNormal<CMeshO>::PerVertexNormalizedPerFaceNormalized(layer->cm);
   vcg::tri::UpdateBounding<CMeshO>::Box(layer->cm);

@@ -35,9 +35,10 @@ MeshModel* add_curve_layer(MeshDocument& doc, const QString& label, const Polyli
                            double lift = 0);
 
 /// Adds a new layer: a copy of `source` (all its per-vertex data) whose vertices in `view` take
-/// `positions` (per view vertex); normals recomputed. The layer is not made current.
+/// `positions` (per view vertex); normals recomputed; with `quality` (per view vertex), vertex quality
+/// too. The layer is not made current.
 MeshModel* add_surface_layer(MeshDocument& doc, const QString& label, MeshModel& source, const View& view,
-                             const std::vector<Vec3>& positions);
+                             const std::vector<Vec3>& positions, const std::vector<double>* quality = nullptr);
 
 /// "<mesh name> – <what>": the label of a layer derived from `m` (file extension dropped).
 QString derived_label(const MeshModel& m, const QString& what);
