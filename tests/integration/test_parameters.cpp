@@ -86,7 +86,8 @@ TEST(PortableParameters, EveryExampleScriptGivesTheSameResultInAnyUnit) {
                                    {"demarcating_shading.mlx", {1}, true},
                                    {"relief_edges.mlx", {1, 2, 3}, false},
                                    {"curvature.mlx", {}, false},
-                                   {"multiscale.mlx", {1, 2, 3}, false}};
+                                   {"multiscale.mlx", {1, 2, 3}, false},
+                                   {"prominent.mlx", {}, true}};
   const MeshFile coin = read_mesh(kCoin);
   const double edge = reliefkit::mesh_scale(coin.mesh).edge;
   for (const auto& sc : scripts) {
