@@ -9,7 +9,8 @@
 //   vertices coincide) | faces x 3 u8 vertex indices (mod vertices + 1: one past the end happens)
 // flags bits 0-1: which core (demarcating, ridges and valleys, relief edges, curvature);
 // bit 2: pre-smoothing given (else "auto"); bit 4: ridges and valleys / relief edges run
-// multi-scale (the pre-smoothing value is then the smallest scale).
+// multi-scale (the pre-smoothing value is then the smallest scale); bit 5 with core 3: the
+// prominent enhancement (field, bilateral filter, 3 flow iterations) and coloring, theta = threshold.
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -17,6 +18,7 @@
 
 #include "reliefkit/demarcating.h"
 #include "reliefkit/multiscale.h"
+#include "reliefkit/prominent.h"
 #include "reliefkit/relief_edges.h"
 #include "reliefkit/curvature.h"
 #include "reliefkit/repair.h"
@@ -105,6 +107,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         break;
       }
       default: {
+        if (flags & 32) {
+          EnhanceParams p;
+          p.field.presmoothing = smooth;
+          p.field.theta = threshold;
+          p.flow_iterations = 3;
+          const EnhanceResult e = enhance_relief(m, p);
+          for (size_t v = 0; v < e.positions.size(); ++v)
+            if (!e.positions[v].allFinite() || !e.field.field[v].allFinite()) std::abort();
+          const ColoringResult c = curvature_coloring(e.field.curvature, &e.field.field, {}, ColoringCurvature::Prominent, 1);
+          for (double g : c.grey)
+            if (!(g >= 0 && g <= 1)) std::abort();
+          break;
+        }
         ScaledCurvature c = curvature_at_scale(m, smooth, CurvatureEstimator::Jet, nullptr);
         for (size_t v = 0; v < c.curvature.k1.size(); ++v)
           if (!std::isfinite(c.curvature.k1[v]) || !std::isfinite(c.curvature.k2[v])) std::abort();
