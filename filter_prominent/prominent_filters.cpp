@@ -42,7 +42,8 @@ const char* kEnhanceInfo =
     "prominent field says which way is across), then (2) an inverse-curvature flow along the prominent field, "
     "which steepens steps, moving every vertex along the base surface's normal; a vertex stops when it reaches "
     "the highest (lowest) point of its neighbourhood, so nothing rises above the relief's own top or sinks "
-    "below its ground. Set <i>Flow iterations</i> to 0 to denoise only (for reliefs that are smooth by design); "
+    "below its ground, or when it has restored what its curvature says wear took (times <i>Enhancement "
+    "strength</i>). Set <i>Flow iterations</i> to 0 to denoise only (for reliefs that are smooth by design); "
     "-1 stops automatically. ";
 
 const char* kColoringInfo =
@@ -184,6 +185,10 @@ void enhance_parameters(MeshModel&, RichParameterList& par) {
                        "100 iterations), 0 skips it (denoise only), a positive number stops after that many."));
   par.addParam(RichFloat("flow_step", 0.2f, "Flow step",
                          "The largest move of a vertex per flow iteration, in edge lengths."));
+  par.addParam(RichFloat("strength", 1.f, "Enhancement strength",
+                         "How far step 2 may move a vertex: 1 restores about what wear took from the corners of the "
+                         "relief (the height its curvature explains), 2 exaggerates twice that. No vertex ever passes "
+                         "the highest or lowest point of its neighbourhood."));
   field_parameters(par);
 }
 
@@ -194,6 +199,7 @@ void apply_enhance(FilterCall& call) {
   p.bilateral_iterations = read_int(call, "bilateral_iterations", "Bilateral iterations", 0, 100);
   p.flow_iterations = read_int(call, "flow_iterations", "Flow iterations", -1, 10000);
   p.flow_step = read_float(call, "flow_step", "Flow step", 0.001, 1);
+  p.strength = read_float(call, "strength", "Enhancement strength", 0.01, 100);
   p.field = read_field_parameters(call);
   p.progress = call.progress;
   View view = view_of(call.mesh, call.log);
@@ -206,7 +212,8 @@ void apply_enhance(FilterCall& call) {
   for (double u : r.height_change) largest = std::max(largest, std::abs(u));
   call.log(QString("Enhanced surface in layer \"%1\": bilateral filter %2 x at sigma_c %3 (%4 edge lengths; %5 s); "
                    "inverse-curvature flow %6 iterations (%7; %8 s), %9 vertices stopped at their local height "
-                   "extremum (within %10 edge lengths), largest height change %11 edge lengths; %12 s in all.")
+                   "extremum (within %10 edge lengths), %13 at the height their curvature explains (strength %14), "
+                   "largest height change %11 edge lengths; %12 s in all.")
                .arg(label)
                .arg(p.bilateral_iterations)
                .arg(r.spatial_scale, 0, 'g', 4)
@@ -219,7 +226,9 @@ void apply_enhance(FilterCall& call) {
                .arg(thousands(r.at_extremum))
                .arg(h > 0 ? r.extremum_radius / h : 0.0, 0, 'f', 1)
                .arg(h > 0 ? largest / h : 0.0, 0, 'f', 2)
-               .arg(seconds_since(t0), 0, 'f', 2));
+               .arg(seconds_since(t0), 0, 'f', 2)
+               .arg(thousands(r.at_curvature_cap))
+               .arg(p.strength, 0, 'g', 3));
 }
 
 // ---- Prominent Coloring ----

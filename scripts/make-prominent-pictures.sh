@@ -35,6 +35,22 @@ zoom 5 "$out/enhanced.png" "$out/coin_enhanced.ply"
 convert \( "$out/scan.png" -crop 560x500+150+200 +repage \) \( "$out/enhanced.png" -crop 560x500+150+200 +repage \) \
   +append "$img/prominent_enhancement.png"
 
+# Enhancement on the statuette and the bunny (their scans converted to PLY: MeshLab 2020.09's OBJ
+# importer aborts on fertility.obj), scan | enhanced, whole objects.
+pairs=()
+for s in fertility stanford-bunny; do
+  src="$here/../shared/data/meshes/$s.obj"
+  [ -f "$src" ] || { echo "skipping $s (missing)"; continue; }
+  "$here/build/tests/rk_make_mesh" convert "$src" "$out/$s.ply" >/dev/null
+  "$here/scripts/meshlabserver" -i "$out/$s.ply" -o "$out/${s}_enhanced.ply" -l 1 -m vq -s "$here/examples/prominent.mlx" \
+    >"$out/${s}_prominent.log" 2>&1
+  "$here/scripts/screenshot.sh" "$out/${s}_scan.png" -- "$out/$s.ply" >/dev/null
+  "$here/scripts/screenshot.sh" "$out/${s}_enh.png" -- "$out/${s}_enhanced.ply" >/dev/null
+  convert "$out/${s}_scan.png" "$out/${s}_enh.png" -crop 700x640+75+140 +repage +append -resize 60% "$out/${s}_pair.png"
+  pairs+=("$out/${s}_pair.png")
+done
+[ ${#pairs[@]} -gt 0 ] && convert "${pairs[@]}" -append "$img/prominent_scans_enhanced.png"
+
 # The field in the GUI: Filters search > Prominent Field > Apply, Render > Show Curvature with a
 # short vector length, zoomed in on the portrait. Screen positions of MeshLab 2020.09 at 1280x900.
 cat >"$out/field.txt" <<EOF

@@ -153,6 +153,7 @@ ProminentFieldResult compute_prominent_field(const TriMesh& mesh, const Prominen
   static_cast<ScaledCurvature&>(out) = static_cast<ScaledCurvature&>(re);
   out.base = std::move(re.base);
   out.base_scale = re.base_scale;
+  out.feature_width = re.feature_width;
   out.relief_direction = std::move(re.direction);
   out.tilt = std::move(re.angle);
   out.tilt_threshold = re.weak_angle;
@@ -213,10 +214,16 @@ ProminentFieldResult compute_prominent_field(const TriMesh& mesh, const Prominen
 // ---- Enhancement ----
 
 // The automatic stop: no vertex moved more than kFlowSettled of the step in the last iteration,
-// or fewer than kFlowSettledShare of the vertices that moved in the first one still move (the
-// flow steepens the relief's outlines first, then creeps along them for a long tail: on the coin
-// 16 % of the vertices still moved after 25 iterations, 6 % after 95).
+// or fewer than kFlowSettledShare of the vertices that moved in the first one still move, or the
+// iteration's total motion fell below that share of the first's (the flow steepens the relief's
+// outlines first, then creeps along them for a long tail: on the coin 16 % of the vertices still
+// moved after 25 iterations, 6 % after 95).
 constexpr double kFlowSettled = 0.05, kFlowSettledShare = 0.1;
+// The stopping rule's neighbourhood reaches at least this multiple of the features' width: a
+// vertex on a worn step's shoulder must see the plateau it is to rise to.
+constexpr double kExtremumWidths = 2.0;
+// The flow leaves vertices tilted more than this against the base (radians).
+constexpr double kFlowMaxTilt = 0.78539816339744831;
 
 void EnhanceParams::validate() const {
   field.validate();
@@ -227,6 +234,7 @@ void EnhanceParams::validate() const {
     throw InputError("Flow iterations must be -1 (automatic) or between 0 and 10000 (got " +
                      std::to_string(flow_iterations) + ")");
   require_range(flow_step, "Flow step", 1e-4, 1);
+  require_range(strength, "Enhancement strength", 0.01, 100);
 }
 
 namespace {
@@ -308,7 +316,7 @@ EnhanceResult enhance_relief(const TriMesh& mesh, const EnhanceParams& p) {
   const double h = f.scale.edge;
   p.spatial_scale.check("Smoothing scale sigma_c", 0.1, 100, h);
   out.spatial_scale = p.spatial_scale.resolve(h, EnhanceParams::kDefaultSpatialEdges * h);
-  out.extremum_radius = 2 * out.spatial_scale;
+  out.extremum_radius = std::max(2 * out.spatial_scale, kExtremumWidths * f.feature_width);
 
   // Step 1: bilateral filter along the prominent field.
   auto t0 = std::chrono::steady_clock::now();
@@ -342,14 +350,23 @@ EnhanceResult enhance_relief(const TriMesh& mesh, const EnhanceParams& p) {
   for (auto& x : near) x = std::clamp(2 * x, 0.0, 1.0);
   std::vector<double> u(nv, 0);  // height change along the base normal
   std::vector<char> stopped(nv, 0);
-  for (int v = 0; v < nv; ++v)  // boundary vertices' one-sided curvature is no guide: they stay
-    if (near[v] < 0.01 || topo.border.offset[v + 1] > topo.border.offset[v]) stopped[v] = 1;
+  // Boundary vertices' one-sided curvature is no guide: they stay. So do vertices tilted more than
+  // kFlowMaxTilt against the base: there the base is no ground under a relief but a part thinner
+  // than the base scale (the bunny's ears, the statuette's arms), and moving along its normal
+  // sheared the surface into creases.
+  const double min_cos = std::cos(kFlowMaxTilt);
+  for (int v = 0; v < nv; ++v)
+    if (near[v] < 0.01 || topo.border.offset[v + 1] > topo.border.offset[v] ||
+        f.curvature.normal[v].dot(nb[v]) < min_cos)
+      stopped[v] = 1;
   TriMesh cur;
   cur.faces = mesh.faces;
   const int max_it = p.flow_iterations >= 0 ? p.flow_iterations : EnhanceParams::kMaxFlowIterations;
   double kappa_ref = 0;
   const double max_move = p.flow_step * h;
-  long long at_ext = 0, first_moving = 0;
+  long long at_ext = 0, at_cap = 0, first_moving = 0;
+  double first_total = 0;
+  std::vector<char> capped(nv, 0);  // bit 0: hi is the curvature cap, bit 1: lo is
   out.converged = p.flow_iterations < 0;
   for (int it = 0; it < max_it; ++it) {
     if (p.progress) p.progress(30 + 70 * it / std::max(1, max_it), "Inverse-curvature flow");
@@ -370,31 +387,57 @@ EnhanceResult enhance_relief(const TriMesh& mesh, const EnhanceParams& p) {
         if (!stopped[v]) a.push_back(std::abs(kp[v]));
       kappa_ref = percentile(a, 0.9);
       if (!(kappa_ref > 0)) break;
+      // Each vertex may restore what its own curvature took away, no more: the height a
+      // parabola of that curvature gains over the stopping rule's radius. Without it the flow
+      // cascaded (a shoulder that rose made its neighbour concave, which sank, and so on) and
+      // terraced smooth bodies: creases and craters on the bunny and the statuette.
+      const double rho2 = out.extremum_radius * out.extremum_radius;
+      // It moves only the way its curvature first pushed it (outwards where convex), so that a
+      // vertex whose curvature flips as its neighbours move does not oscillate.
+      for (int v = 0; v < nv; ++v) {
+        const double cap = p.strength * 0.5 * std::abs(kp[v]) * rho2;
+        if (kp[v] >= 0) {
+          lo[v] = 0;
+          if (cap < hi[v]) hi[v] = cap, capped[v] = 1;
+        } else {
+          hi[v] = 0;
+          if (-cap > lo[v]) lo[v] = -cap, capped[v] = 2;
+        }
+      }
     }
-    double largest = 0;
+    double largest = 0, total = 0;
     long long moving = 0;
-#pragma omp parallel for schedule(static) reduction(max : largest) reduction(+ : moving, at_ext)
+#pragma omp parallel for schedule(static) reduction(max : largest) reduction(+ : moving, at_ext, at_cap, total)
     for (int v = 0; v < nv; ++v) {
       if (stopped[v]) continue;
-      const double d = near[v] * max_move * std::clamp(kp[v] / kappa_ref, -1.0, 1.0) * nb[v].dot(c.normal[v]);
+      double d = near[v] * max_move * std::clamp(kp[v] / kappa_ref, -1.0, 1.0) * nb[v].dot(c.normal[v]);
+      if (hi[v] <= 0) d = std::min(d, 0.0);  // monotone: only ever the first way (see the caps)
+      if (lo[v] >= 0) d = std::max(d, 0.0);
+      if (d == 0) continue;
       double nu = u[v] + d;
       if (nu > hi[v] || nu < lo[v]) {
+        const bool up = nu > hi[v];
         nu = std::clamp(nu, lo[v], hi[v]);
         stopped[v] = 1;
-        ++at_ext;
+        if (capped[v] & (up ? 1 : 2))
+          ++at_cap;
+        else
+          ++at_ext;
       }
       largest = std::max(largest, std::abs(nu - u[v]));
+      total += std::abs(nu - u[v]);
       u[v] = nu;
       ++moving;
     }
     out.flow_iterations = it + 1;
-    if (it == 0) first_moving = moving;
-    if (p.flow_iterations < 0 &&
-        (moving <= kFlowSettledShare * first_moving || largest < kFlowSettled * max_move))
+    if (it == 0) first_moving = moving, first_total = total;
+    if (p.flow_iterations < 0 && (moving <= kFlowSettledShare * first_moving || largest < kFlowSettled * max_move ||
+                                  total <= kFlowSettledShare * first_total))
       break;
     if (p.flow_iterations < 0 && it + 1 == max_it) out.converged = false;
   }
   out.at_extremum = at_ext;
+  out.at_curvature_cap = at_cap;
   sized(out.positions, size_t(nv), Vec3(Vec3::Zero()));
   for (int v = 0; v < nv; ++v) out.positions[v] = out.bilateral[v] + u[v] * nb[v];
   out.height_change = u;

@@ -28,7 +28,8 @@ std::string field_filter(int quality = 0) {
 }
 std::string enhance_filter(const std::string& sigma_c = "auto", int flow = -1) {
   std::vector<std::string> p{param_string("sigma_c", sigma_c), param_int("bilateral_iterations", 2),
-                             param_int("flow_iterations", flow), param_float("flow_step", 0.2)};
+                             param_int("flow_iterations", flow), param_float("flow_step", 0.2),
+                             param_float("strength", 1)};
   for (const auto& x : field_params()) p.push_back(x);
   return mlx_filter("Prominent Enhancement", p);
 }

@@ -58,6 +58,7 @@ struct ProminentFieldParams {
 struct ProminentFieldResult : ScaledCurvature {  // scale, noise, pre-smoothing, curvature
   BaseNormals base;
   double base_scale = 0;                 // used, mesh units
+  double feature_width = 0;              // the features' width (reliefkit/curvature.h feature_width), mesh units
   std::vector<Vec3> relief_direction;    // g: across the relief edge, up the step (chapter 4)
   std::vector<Vec3> principal;           // t: direction of the largest |curvature|
   std::vector<double> alpha;             // eq. 6.2
@@ -104,6 +105,10 @@ struct EnhanceParams {
   int flow_iterations = -1;
   /// Largest move per flow iteration, x edge length.
   double flow_step = 0.2;
+  /// How far the flow may move a vertex, x the height its initial curvature kappa explains over
+  /// the stopping rule's radius rho (0.5 |kappa| rho^2): 1 restores about what rounding took from a
+  /// corner; larger exaggerates (the local height extremum still bounds every vertex).
+  double strength = 1.0;
   /// Use the prominent term exp(-r_j^2 / 2 sigma_r^2) in the bilateral filter (off: Fleishman et al.).
   bool prominent_term = true;
   Progress progress = nullptr;
@@ -119,6 +124,7 @@ struct EnhanceResult {
   std::vector<double> height_change;   // step 2's move along the base normal, mesh units
   int flow_iterations = 0;             // run
   long long at_extremum = 0;           // vertices stopped by the local height extremum
+  long long at_curvature_cap = 0;      // stopped by the height their initial curvature explains
   bool converged = false;              // the automatic stop was reached (every vertex stopped)
   double bilateral_seconds = 0, flow_seconds = 0;
 };
