@@ -155,12 +155,7 @@ void apply_shading(FilterCall& call) {
     grey = mean_curvature_shading(sc.curvature, contrast);
     call.log(scale_summary(sc.scale, sc.noise, sc.presmoothing, p.presmoothing));
   }
-  call.mesh.updateDataMask(MeshModel::MM_VERTCOLOR | MeshModel::MM_VERTQUALITY);
-  for_each_vertex(view, [&](int i, CVertexO* v) {
-    auto g = static_cast<unsigned char>(std::lround(255 * std::clamp(grey[i], 0.0, 1.0)));
-    v->C() = vcg::Color4b(g, g, g, 255);
-    v->Q() = float(grey[i]);
-  });
+  write_grey(call.mesh, view, grey, grey);
   call.log(QString("Curvature shading of %1 vertices (contrast %2)%3.")
                .arg(thousands(view.mesh.n_vertices()))
                .arg(contrast, 0, 'g', 3)

@@ -261,12 +261,7 @@ void apply_coloring(FilterCall& call) {
     col = curvature_coloring(sc.curvature, nullptr, sc.scale.counts, which, contrast);
     call.log(scale_summary(sc.scale, sc.noise, sc.presmoothing, p.presmoothing));
   }
-  call.mesh.updateDataMask(MeshModel::MM_VERTCOLOR | MeshModel::MM_VERTQUALITY);
-  for_each_vertex(view, [&](int i, CVertexO* v) {
-    const auto g = static_cast<unsigned char>(std::lround(255 * std::clamp(col.grey[i], 0.0, 1.0)));
-    v->C() = vcg::Color4b(g, g, g, 255);
-    v->Q() = Scalarm(col.curvature[i]);
-  });
+  write_grey(call.mesh, view, col.grey, col.curvature);
   call.log(QString("%1 coloring of %2 vertices: lambda %3 (contrast %4 x automatic); vertex quality = the curvature; "
                    "%5 s.")
                .arg(kColoringCurvature[int(which)].section(' ', 0, 0))

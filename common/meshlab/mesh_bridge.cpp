@@ -84,6 +84,15 @@ MeshModel* add_surface_layer(MeshDocument& doc, const QString& label, MeshModel&
   return layer;
 }
 
+void write_grey(MeshModel& m, const View& view, const std::vector<double>& grey, const std::vector<double>& quality) {
+  m.updateDataMask(MeshModel::MM_VERTCOLOR | MeshModel::MM_VERTQUALITY);
+  for_each_vertex(view, [&](int i, CVertexO* v) {
+    const auto g = static_cast<unsigned char>(std::lround(255 * std::clamp(grey[size_t(i)], 0.0, 1.0)));
+    v->C() = vcg::Color4b(g, g, g, 255);
+    v->Q() = Scalarm(quality[size_t(i)]);
+  });
+}
+
 QString derived_label(const MeshModel& m, const QString& what) {
   QString name = m.label();
   int dot = name.lastIndexOf('.');

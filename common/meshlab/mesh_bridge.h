@@ -43,6 +43,9 @@ MeshModel* add_surface_layer(MeshDocument& doc, const QString& label, MeshModel&
 /// "<mesh name> – <what>": the label of a layer derived from `m` (file extension dropped).
 QString derived_label(const MeshModel& m, const QString& what);
 
+/// Grey vertex colours (grey in [0, 1] per view vertex, clamped) and vertex quality = `quality`.
+void write_grey(MeshModel& m, const View& view, const std::vector<double>& grey, const std::vector<double>& quality);
+
 /// Writes a named per-vertex Point3 attribute.
 void write_vertex_vectors(CMeshO& m, const View& v, const char* name, const std::vector<Vec3>& values);
 
