@@ -110,7 +110,7 @@ void solve_prominent_field(const TriMesh& mesh, const MeshTopology& topology, co
     const double phi = std::atan2(r.dot(e2[p]), r.dot(e1[p]));
     const double cx = std::cos(k * phi), cy = std::sin(k * phi);
     rhs[2 * p] = mu * cx, rhs[2 * p + 1] = mu * cy;
-    guess[2 * p] = cx, guess[2 * p + 1] = cy;
+    guess[2 * p] = beta[p] * cx, guess[2 * p + 1] = beta[p] * cy;  // free vertices start at 0
   }
   SolverOptions so;
   so.tolerance = kFieldTolerance;

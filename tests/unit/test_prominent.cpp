@@ -269,6 +269,17 @@ TEST(ProminentEnhancement, RestoresAnErodedStepBetterThanBilateralAndTaubin) {
   EXPECT_LT(s_r.rms_near, 0.75 * s_tb.rms_near);
   EXPECT_GE(s_r.slope, s_worn.slope);      // measured 4.4 vs 0.79
   EXPECT_TRUE(en.converged);
+  // Strength 2 lets the flow move twice as far where the curvature cap binds: more motion in all.
+  EnhanceParams twice;
+  twice.strength = 2;
+  const EnhanceResult en2 = enhance_relief(noisy.mesh, twice);
+  auto motion = [](const EnhanceResult& x) {
+    double m = 0;
+    for (double u : x.height_change) m += std::abs(u);
+    return m / x.height_change.size();
+  };
+  std::printf("mean height change: strength 1 %.4f, strength 2 %.4f edge lengths\n", motion(en) / e, motion(en2) / e);
+  EXPECT_GT(motion(en2), 1.1 * motion(en));
 
   // No vertex beyond the local height extremum, even when the flow runs long and the curvature
   // cap is lifted (strength 100, 60 iterations): the step-1 surface's heights (z: the base is the
