@@ -68,9 +68,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 void field_parameters(RichParameterList& par) {
   add_presmoothing(par);
-  add_length(par, "base_scale", Length::automatic(), "Base surface scale",
-             "How far normals are averaged to find the smooth surface under the relief: about three times the width "
-             "of the relief's features. auto: as Relief Edges chooses it (at least 15 edge lengths).");
+  add_base_scale(par);
   par.addParam(RichFloat("theta", float(ProminentFieldParams::kDefaultTheta), "Feature threshold (theta)",
                          "Which points count as features that fix the field (the thesis' theta, default 2). Larger "
                          "values take fainter features (each threshold is scaled by 2 / theta), smaller values only "
@@ -80,7 +78,7 @@ void field_parameters(RichParameterList& par) {
 ProminentFieldParams read_field_parameters(FilterCall& call) {
   ProminentFieldParams p;
   p.presmoothing = read_presmoothing(call);
-  p.base_scale = read_length(call, "base_scale", "Base surface scale", 0.5, 10000);
+  p.base_scale = read_base_scale(call);
   p.theta = read_float(call, "theta", "Feature threshold (theta)", 0.01, 100);
   p.progress = call.progress;
   return p;
@@ -255,9 +253,7 @@ void apply_coloring(FilterCall& call) {
     col = curvature_coloring(f.curvature, &f.field, f.scale.counts, which, contrast);
     log_field(call, f, p);
   } else {
-    p.validate();
-    require_triangles(view.mesh);
-    const ScaledCurvature sc = curvature_at_scale(view.mesh, p.presmoothing, p.estimator, p.progress);
+    const ScaledCurvature sc = begin_curve_filter(view.mesh, p);
     col = curvature_coloring(sc.curvature, nullptr, sc.scale.counts, which, contrast);
     call.log(scale_summary(sc.scale, sc.noise, sc.presmoothing, p.presmoothing));
   }

@@ -59,15 +59,6 @@ void log_unconverged(FilterCall& call, const BaseNormals& b, double scale, doubl
                .arg(edge > 0 ? scale / edge : 0.0, 0, 'f', 1));
 }
 
-void add_base_scale(RichParameterList& par) {
-  add_length(par, "base_scale", Length::automatic(), "Base surface scale",
-             "How far normals are averaged to find the smooth surface under the relief: about three times the width "
-             "of the relief's features (letters, figures). auto: 15 edge lengths; Relief Edges takes more where "
-             "the features it measures on the scan are wider (9 times their width).");
-}
-
-Length read_base_scale(FilterCall& call) { return read_length(call, "base_scale", "Base surface scale", 0.5, 10000); }
-
 void relief_parameters(MeshModel&, RichParameterList& par) {
   add_presmoothing(par);
   add_base_scale(par);

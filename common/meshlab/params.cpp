@@ -92,6 +92,15 @@ void add_presmoothing(RichParameterList& par) {
 
 Length read_presmoothing(FilterCall& call) { return read_length(call, "presmoothing", "Pre-smoothing", 0, 100); }
 
+void add_base_scale(RichParameterList& par) {
+  add_length(par, "base_scale", Length::automatic(), "Base surface scale",
+             "How far normals are averaged to find the smooth surface under the relief: about three times the width "
+             "of the relief's features (letters, figures). auto: 15 edge lengths; Relief Edges and the prominent "
+             "filters take more where the features they measure on the scan are wider (9 times their width).");
+}
+
+Length read_base_scale(FilterCall& call) { return read_length(call, "base_scale", "Base surface scale", 0.5, 10000); }
+
 void add_lift(RichParameterList& par) {
   par.addParam(RichFloat("lift", 0.2f, "Lift curves off the surface",
                          "Moves the points of the curve layer this many edge lengths along the surface normal, so "

@@ -40,6 +40,10 @@ namespace reliefkit::ml {
 void add_presmoothing(RichParameterList& par);
 Length read_presmoothing(FilterCall& call);
 
+/// The base-surface scale of the filters that use base normals ("base_scale", default auto).
+void add_base_scale(RichParameterList& par);
+Length read_base_scale(FilterCall& call);
+
 /// "lift": how far (edge lengths) curve layers are lifted off the surface for display.
 void add_lift(RichParameterList& par);
 double read_lift(FilterCall& call);

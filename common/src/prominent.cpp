@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <complex>
 #include <tuple>
 
 #include "reliefkit/laplacian.h"
