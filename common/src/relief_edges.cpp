@@ -39,15 +39,11 @@ CurvatureDerivative edge_correlation_form(const CurvatureDerivative& C) {
   return {C.a * kA + 3 * C.c * kB, (3 * C.b + C.d) * kB, (3 * C.c + C.a) * kB, C.d * kA + 3 * C.b * kB};
 }
 
-double edge_fit_norm(const CurvatureDerivative& C, double k1, double k2, double radius) {
+double edge_fit_error(const CurvatureDerivative& C, double k1, double k2, double f, double radius) {
   const double a1 = C.a, a2 = C.b, a3 = C.c, a4 = C.d;
   const double s1 = kA * (a1 * a1 + a4 * a4) + 9 * kB * (a2 * a2 + a3 * a3) + 6 * kB * (a1 * a3 + a2 * a4);
   const double s2 = 0.75 * kPi * (k1 * k1 + k2 * k2) + 0.5 * kPi * k1 * k2;
-  return s1 + 12 * s2 / (radius * radius);
-}
-
-double edge_fit_error(const CurvatureDerivative& C, double k1, double k2, double f, double radius) {
-  const double norm = edge_fit_norm(C, k1, k2, radius);
+  const double norm = s1 + 12 * s2 / (radius * radius);
   if (!(norm > 0)) return 1;
   return std::clamp(1 - f * f / kA / norm, 0.0, 1.0);
 }

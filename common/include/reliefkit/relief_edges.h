@@ -30,9 +30,6 @@ CurvatureDerivative edge_correlation_form(const CurvatureDerivative& C);
 /// neighbourhood the error is integrated over (the radial integrals give the 12 / R^2). In [0, 1]:
 /// 0 for a perfect step edge.
 double edge_fit_error(const CurvatureDerivative& C, double k1, double k2, double f, double radius);
-/// The normaliser of edge_fit_error, ||S1||^2 + 12 ||S2||^2 / R^2 (1/length^4): the fit error
-/// times it is eq. 4.7's residual itself.
-double edge_fit_norm(const CurvatureDerivative& C, double k1, double k2, double radius);
 
 struct ReliefEdgeParams {
   static constexpr double kDefaultEdgeSmoothingEdges = 0.8;  // x edge length (thesis 4.4)
