@@ -1,0 +1,185 @@
+#include "reliefkit/line_drawing.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "reliefkit/scale.h"
+
+namespace reliefkit {
+
+void LineDetectionParams::validate() const {
+  require_range(sigma, "Line scale sigma (px)", 0.5, 50);
+  require_range(min_strength, "Line strength", 0, 10);
+  require_range(max_intensity, "Darkest paper", 0, 1);
+  require_range(min_length, "Minimum stroke length (px)", 0, 1e6);
+  require_range(max_link_gap, "Link gap (px)", 1, 10);
+  require_range(max_link_turn, "Link turn (radians)", 0, 3.2);
+}
+
+double DrawingCurves::total_length() const {
+  double len = 0;
+  for (const auto& c : curves)
+    for (size_t i = 1; i < c.size(); ++i) len += (c[i] - c[i - 1]).norm();
+  return len;
+}
+
+cv::Mat drawing_grey(const cv::Mat& image) {
+  if (image.empty() || image.rows < 1 || image.cols < 1) throw InputError("The drawing image is empty (no pixels).");
+  const int ch = image.channels();
+  if (ch != 1 && ch != 3 && ch != 4)
+    throw InputError("The drawing image has " + std::to_string(ch) + " channels; grey, RGB or RGBA images are read.");
+  cv::Mat f;
+  const double scale = image.depth() == CV_8U ? 1.0 / 255 : image.depth() == CV_16U ? 1.0 / 65535 : 1.0;
+  image.convertTo(f, CV_32F, scale);
+  cv::Mat grey;
+  if (ch == 1) {
+    grey = f;
+  } else {
+    std::vector<cv::Mat> planes;
+    cv::split(f, planes);  // OpenCV's channel order: B, G, R (, A)
+    grey = 0.114f * planes[0] + 0.587f * planes[1] + 0.299f * planes[2];
+    if (ch == 4) grey = grey.mul(planes[3]) + (1.0f - planes[3]);  // transparent = white paper
+  }
+  cv::patchNaNs(grey, 1.0);
+  cv::min(cv::max(grey, 0.0), 1.0, grey);
+  return grey;
+}
+
+namespace {
+
+struct LinePoint {
+  float x, y;     // sub-pixel position
+  float dx, dy;   // unit direction along the line
+  float strength;
+};
+
+}  // namespace
+
+DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionParams& p) {
+  p.validate();
+  DrawingCurves out;
+  const cv::Mat grey = drawing_grey(image);
+  out.width = grey.cols, out.height = grey.rows;
+  cv::Mat g;
+  cv::GaussianBlur(grey, g, cv::Size(0, 0), p.sigma, p.sigma, cv::BORDER_REPLICATE);
+  // Derivatives of the smoothed image by central differences (Sobel 3x3, normalised).
+  cv::Mat rx, ry, rxx, rxy, ryy;
+  cv::Sobel(g, rx, CV_32F, 1, 0, 3, 1.0 / 8, 0, cv::BORDER_REPLICATE);
+  cv::Sobel(g, ry, CV_32F, 0, 1, 3, 1.0 / 8, 0, cv::BORDER_REPLICATE);
+  cv::Sobel(g, rxx, CV_32F, 2, 0, 3, 1.0 / 4, 0, cv::BORDER_REPLICATE);
+  cv::Sobel(g, ryy, CV_32F, 0, 2, 3, 1.0 / 4, 0, cv::BORDER_REPLICATE);
+  cv::Sobel(g, rxy, CV_32F, 1, 1, 3, 1.0 / 16, 0, cv::BORDER_REPLICATE);
+  const int W = g.cols, H = g.rows;
+  std::vector<int> at(size_t(W) * H, -1);  // pixel -> line point index
+  std::vector<LinePoint> pts;
+  for (int y = 0; y < H; ++y) {
+    const float *px = rx.ptr<float>(y), *py = ry.ptr<float>(y), *pxx = rxx.ptr<float>(y), *pxy = rxy.ptr<float>(y),
+                *pyy = ryy.ptr<float>(y), *pg = g.ptr<float>(y);
+    for (int x = 0; x < W; ++x) {
+      if (pg[x] > p.max_intensity) continue;
+      // Largest eigenvalue of the Hessian and its eigenvector n (across the line).
+      const double a = pxx[x], b = pxy[x], c = pyy[x];
+      const double mean = 0.5 * (a + c), d = std::sqrt(0.25 * (a - c) * (a - c) + b * b);
+      const double lambda = mean + d;
+      if (lambda < p.min_strength) continue;
+      double nx, ny;
+      if (std::abs(b) > 1e-12)
+        nx = b, ny = lambda - a;
+      else if (a >= c)
+        nx = 1, ny = 0;
+      else
+        nx = 0, ny = 1;
+      const double nn = std::hypot(nx, ny);
+      nx /= nn, ny /= nn;
+      const double t = -(px[x] * nx + py[x] * ny) / lambda;  // to the profile's minimum along n
+      if (std::abs(t * nx) > 0.5 || std::abs(t * ny) > 0.5) continue;
+      at[size_t(y) * W + x] = int(pts.size());
+      pts.push_back({float(x + t * nx), float(y + t * ny), float(-ny), float(nx), float(lambda)});
+    }
+  }
+  out.line_points = static_cast<long long>(pts.size());
+
+  // Linking: from the strongest unused point, follow the line both ways to the best neighbouring
+  // point ahead (within the 8-neighbourhood, along the direction, close and turning little).
+  std::vector<int> order(pts.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int i, int j) { return pts[i].strength > pts[j].strength; });
+  std::vector<char> used(pts.size(), 0);
+  const double cos_turn = std::cos(p.max_link_turn);
+  auto next_point = [&](int i, double dirx, double diry, bool& hit_used) {
+    const LinePoint& q = pts[i];
+    const int cx = int(std::lround(q.x)), cy = int(std::lround(q.y));
+    int best = -1;
+    double best_cost = 1e300;
+    hit_used = false;
+    for (int oy = -1; oy <= 1; ++oy)
+      for (int ox = -1; ox <= 1; ++ox) {
+        if (!ox && !oy) continue;
+        const int x = cx + ox, y = cy + oy;
+        if (x < 0 || y < 0 || x >= W || y >= H) continue;
+        const int j = at[size_t(y) * W + x];
+        if (j < 0 || j == i) continue;
+        const double vx = pts[j].x - q.x, vy = pts[j].y - q.y, dist = std::hypot(vx, vy);
+        if (dist > p.max_link_gap || dist < 1e-6) continue;
+        if ((vx * dirx + vy * diry) / dist < 0.5) continue;  // ahead, within 60 degrees
+        const double turn = std::abs(pts[j].dx * dirx + pts[j].dy * diry);
+        if (turn < cos_turn) continue;
+        const double cost = dist + 2 * (1 - turn);
+        if (cost < best_cost) best_cost = cost, best = j;
+      }
+    if (best >= 0 && used[best]) {
+      hit_used = true;
+      return best;
+    }
+    return best;
+  };
+  for (int s : order) {
+    if (used[s]) continue;
+    used[s] = 1;
+    std::vector<int> chain{s};
+    for (int side = 0; side < 2; ++side) {
+      std::vector<int> ext;
+      int cur = s;
+      double dirx = side ? -pts[s].dx : pts[s].dx, diry = side ? -pts[s].dy : pts[s].dy;
+      for (;;) {
+        bool hit = false;
+        const int n = next_point(cur, dirx, diry, hit);
+        if (n < 0) break;
+        if (hit) {  // ran into another curve (or itself): a junction, the curve ends there
+          out.junctions.push_back(Vec2(pts[n].x, pts[n].y));
+          ext.push_back(n);
+          break;
+        }
+        used[n] = 1;
+        ext.push_back(n);
+        // keep the direction's orientation continuous
+        const double ndx = pts[n].dx, ndy = pts[n].dy;
+        if (ndx * dirx + ndy * diry >= 0)
+          dirx = ndx, diry = ndy;
+        else
+          dirx = -ndx, diry = -ndy;
+        cur = n;
+      }
+      if (side == 0)
+        chain.insert(chain.end(), ext.begin(), ext.end());
+      else
+        chain.insert(chain.begin(), ext.rbegin(), ext.rend());
+    }
+    std::vector<Vec2> poly;
+    poly.reserve(chain.size());
+    for (int i : chain) poly.push_back(Vec2(pts[i].x, pts[i].y));
+    double len = 0;
+    for (size_t i = 1; i < poly.size(); ++i) len += (poly[i] - poly[i - 1]).norm();
+    if (len < p.min_length || poly.size() < 2) {
+      ++out.dropped_short;
+      continue;
+    }
+    out.curves.push_back(std::move(poly));
+  }
+  return out;
+}
+
+}  // namespace reliefkit
