@@ -31,6 +31,23 @@ cv::Mat drawing_grey(const cv::Mat& image) {
   const int ch = image.channels();
   if (ch != 1 && ch != 3 && ch != 4)
     throw InputError("The drawing image has " + std::to_string(ch) + " channels; grey, RGB or RGBA images are read.");
+  if (image.depth() == CV_8U) {  // the usual case, in one pass: weights of ITU-R BT.601, alpha over white
+    cv::Mat grey(image.rows, image.cols, CV_32F);
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y < image.rows; ++y) {
+      const uchar* in = image.ptr<uchar>(y);
+      float* o = grey.ptr<float>(y);
+      for (int x = 0; x < image.cols; ++x, in += ch) {
+        float v = ch == 1 ? in[0] / 255.f : (0.114f * in[0] + 0.587f * in[1] + 0.299f * in[2]) / 255.f;
+        if (ch == 4) {
+          const float a = in[3] / 255.f;
+          v = a * v + (1 - a);
+        }
+        o[x] = v;
+      }
+    }
+    return grey;
+  }
   cv::Mat f;
   const double scale = image.depth() == CV_8U ? 1.0 / 255 : image.depth() == CV_16U ? 1.0 / 65535 : 1.0;
   image.convertTo(f, CV_32F, scale);
@@ -74,7 +91,10 @@ DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionPa
   cv::Sobel(g, rxy, CV_32F, 1, 1, 3, 1.0 / 16, 0, cv::BORDER_REPLICATE);
   const int W = g.cols, H = g.rows;
   std::vector<int> at(size_t(W) * H, -1);  // pixel -> line point index
-  std::vector<LinePoint> pts;
+  // Line points row by row in parallel, then numbered in row order.
+  std::vector<std::vector<LinePoint>> rows(static_cast<size_t>(H));
+  std::vector<std::vector<int>> row_x(static_cast<size_t>(H));
+#pragma omp parallel for schedule(dynamic, 16)
   for (int y = 0; y < H; ++y) {
     const float *px = rx.ptr<float>(y), *py = ry.ptr<float>(y), *pxx = rxx.ptr<float>(y), *pxy = rxy.ptr<float>(y),
                 *pyy = ryy.ptr<float>(y), *pg = g.ptr<float>(y);
@@ -96,10 +116,16 @@ DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionPa
       nx /= nn, ny /= nn;
       const double t = -(px[x] * nx + py[x] * ny) / lambda;  // to the profile's minimum along n
       if (std::abs(t * nx) > 0.5 || std::abs(t * ny) > 0.5) continue;
-      at[size_t(y) * W + x] = int(pts.size());
-      pts.push_back({float(x + t * nx), float(y + t * ny), float(-ny), float(nx), float(lambda)});
+      rows[size_t(y)].push_back({float(x + t * nx), float(y + t * ny), float(-ny), float(nx), float(lambda)});
+      row_x[size_t(y)].push_back(x);
     }
   }
+  std::vector<LinePoint> pts;
+  for (int y = 0; y < H; ++y)
+    for (size_t k = 0; k < rows[size_t(y)].size(); ++k) {
+      at[size_t(y) * W + row_x[size_t(y)][k]] = int(pts.size());
+      pts.push_back(rows[size_t(y)][k]);
+    }
   out.line_points = static_cast<long long>(pts.size());
 
   // Linking: from the strongest unused point, follow the line both ways to the best neighbouring
