@@ -1,0 +1,50 @@
+// ReliefKit — interpreting a line drawing: which side of each curve is higher, by how many steps
+// (thesis section 7.3).
+//
+// The curves cut the drawing into regions; the thesis' margins are the regions' borders along the
+// curves, so here the graph's nodes are the regions and each curve is an edge between the regions
+// on its two sides. A curve between two regions becomes a step from the lower to the higher one:
+// the graph is directed acyclically (a total order of the regions: breadth-first from the base
+// regions — the thesis' heuristic: the regions with the most curves, so that reliefs rise from the
+// base — or from regions whose directions the user fixed), and each region's height is its
+// topological level (the longest chain of steps below it); a curve's step is the difference of
+// the heights of its two sides. Integer, positive, consistent along every path (Constraints 1-3).
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "reliefkit/line_drawing.h"
+
+namespace reliefkit {
+
+/// A user's fixed direction: curve `curve` rises from its left side (seen along the curve, in
+/// image coordinates, x right and y down) to its right side when `left_lower`, else the other way.
+struct FixedDirection {
+  int curve = -1;
+  bool left_lower = true;
+};
+
+struct InterpretationParams {
+  double margin = 3;  // px: how far beside a curve its two sides are sampled
+  double gap_close = 8;  // px: curve ends are extended this far to close junction gaps
+  std::vector<FixedDirection> fixed;
+  void validate() const;
+};
+
+struct DrawingInterpretation {
+  cv::Mat regions;                    // CV_32S, region label per pixel (-1 on the curves)
+  int region_count = 0;
+  std::vector<std::array<int, 2>> sides;  // per curve: the region on its left and on its right (-1 unknown)
+  std::vector<int> region_height;     // topological level of each region (0: the base)
+  std::vector<int> step;              // per curve: height(right) - height(left), 0 when not a step
+  std::vector<int> base_regions;      // the regions the base heuristic chose (or level 0)
+  int ignored_curves = 0;             // curves with the same region (or none) on both sides
+};
+
+/// Regions, sides and levels of the curves of a drawing of `width` x `height` pixels. Throws
+/// InputError when the fixed directions contradict each other (a cycle) or name unknown curves.
+DrawingInterpretation interpret_drawing(const DrawingCurves& curves, const InterpretationParams& params = {});
+
+}  // namespace reliefkit

@@ -1,0 +1,170 @@
+#include "reliefkit/drawing_interpretation.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <deque>
+#include <map>
+#include <queue>
+#include <set>
+
+#include "reliefkit/scale.h"
+
+namespace reliefkit {
+
+void InterpretationParams::validate() const {
+  require_range(margin, "Margin width (px)", 0.5, 1000);
+  require_range(gap_close, "Gap closing (px)", 0, 1000);
+}
+
+namespace {
+
+// The region at pixel p (rounded), -1 outside the image or on a curve.
+int region_at(const cv::Mat& labels, const Vec2& p) {
+  const int x = int(std::lround(p.x())), y = int(std::lround(p.y()));
+  if (x < 0 || y < 0 || x >= labels.cols || y >= labels.rows) return -1;
+  return labels.at<int>(y, x);
+}
+
+int majority(const std::map<int, int>& votes) {
+  int best = -1, n = 0;
+  for (const auto& [r, c] : votes)
+    if (r >= 0 && c > n) best = r, n = c;
+  return best;
+}
+
+}  // namespace
+
+DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const InterpretationParams& p) {
+  p.validate();
+  const int nc = static_cast<int>(dc.curves.size());
+  for (const auto& f : p.fixed)
+    if (f.curve < 0 || f.curve >= nc)
+      throw InputError("The interpretation names curve " + std::to_string(f.curve) + ", but the drawing has curves 0 to " +
+                       std::to_string(nc - 1) + ".");
+  DrawingInterpretation out;
+  if (dc.width <= 0 || dc.height <= 0) return out;
+  // Regions: the image minus the curves (drawn 2 px wide), 4-connected.
+  cv::Mat ink(dc.height, dc.width, CV_8U, cv::Scalar(0));
+  for (const auto& c : dc.curves) {
+    std::vector<cv::Point> pts;
+    for (const auto& q : c) pts.emplace_back(int(std::lround(q.x())), int(std::lround(q.y())));
+    cv::polylines(ink, pts, false, cv::Scalar(255), 2, cv::LINE_8);
+    // Line detection fades where curves meet (a junction's profile is no line's): each end is
+    // extended along its direction, so that touching shapes close their regions.
+    if (c.size() >= 2 && p.gap_close > 0)
+      for (int e = 0; e < 2; ++e) {
+        const Vec2 a = e ? c[c.size() - 1] : c[0];
+        const Vec2 b = e ? c[std::max<size_t>(0, c.size() >= 4 ? c.size() - 4 : 0)] : c[std::min<size_t>(3, c.size() - 1)];
+        Vec2 d = a - b;
+        if (!(d.norm() > 0)) continue;
+        d.normalize();
+        const Vec2 z = a + p.gap_close * d;
+        cv::line(ink, cv::Point(int(std::lround(a.x())), int(std::lround(a.y()))),
+                 cv::Point(int(std::lround(z.x())), int(std::lround(z.y()))), cv::Scalar(255), 2, cv::LINE_8);
+      }
+  }
+  cv::Mat free = ink == 0, labels;
+  const int n = cv::connectedComponents(free, labels, 4, CV_32S);
+  labels -= 1;  // the curves' label 0 becomes -1; regions 0 .. n-2
+  out.regions = labels;
+  out.region_count = std::max(0, n - 1);
+
+  // Each curve's two sides, by a vote of samples at `margin` beside it.
+  out.sides.assign(size_t(nc), {-1, -1});
+  for (int k = 0; k < nc; ++k) {
+    const auto& c = dc.curves[size_t(k)];
+    std::map<int, int> left, right;
+    for (size_t i = 0; i + 1 < c.size(); ++i) {
+      Vec2 d = c[i + 1] - c[i];
+      const double len = d.norm();
+      if (!(len > 0)) continue;
+      d /= len;
+      const Vec2 l(d.y(), -d.x());  // left of the direction of travel, y down
+      const Vec2 m = 0.5 * (c[i] + c[i + 1]);
+      ++left[region_at(labels, m + p.margin * l)];
+      ++right[region_at(labels, m - p.margin * l)];
+    }
+    out.sides[size_t(k)] = {majority(left), majority(right)};
+  }
+
+  // The graph: regions, curves between two different regions.
+  const int nr = out.region_count;
+  std::vector<std::set<int>> adj(static_cast<size_t>(nr));
+  std::vector<std::vector<int>> lower_than(static_cast<size_t>(nr));  // fixed: region -> regions that must be above it
+  std::vector<int> fixed_in(size_t(nr), 0);
+  for (int k = 0; k < nc; ++k) {
+    const auto [a, b] = out.sides[size_t(k)];
+    if (a < 0 || b < 0 || a == b) {
+      ++out.ignored_curves;
+      continue;
+    }
+    adj[size_t(a)].insert(b), adj[size_t(b)].insert(a);
+  }
+  for (const auto& f : p.fixed) {
+    const auto [a, b] = out.sides[size_t(f.curve)];
+    if (a < 0 || b < 0 || a == b) continue;
+    const int lo = f.left_lower ? a : b, hi = f.left_lower ? b : a;
+    lower_than[size_t(lo)].push_back(hi);
+    ++fixed_in[size_t(hi)];
+  }
+  // Base: among the regions no fixed direction puts above another, the one bordering most curves.
+  std::vector<int> dist(size_t(nr), -1);
+  std::deque<int> q;
+  auto start_from = [&](int r) {
+    if (dist[size_t(r)] >= 0) return;
+    dist[size_t(r)] = 0;
+    q.push_back(r);
+    out.base_regions.push_back(r);
+    while (!q.empty()) {
+      const int u = q.front();
+      q.pop_front();
+      for (int v : adj[size_t(u)])
+        if (dist[size_t(v)] < 0) dist[size_t(v)] = dist[size_t(u)] + 1, q.push_back(v);
+    }
+  };
+  for (;;) {  // one base per connected part of the graph
+    int best = -1;
+    for (int r = 0; r < nr; ++r)
+      if (dist[size_t(r)] < 0 && !adj[size_t(r)].empty() && fixed_in[size_t(r)] == 0 &&
+          (best < 0 || adj[size_t(r)].size() > adj[size_t(best)].size()))
+        best = r;
+    if (best < 0) {
+      for (int r = 0; r < nr; ++r)
+        if (dist[size_t(r)] < 0 && !adj[size_t(r)].empty()) best = r;
+      if (best < 0) break;
+    }
+    start_from(best);
+  }
+  // A total order respecting the fixed directions (Kahn), nearest the base first.
+  std::vector<int> order, rank(size_t(nr), -1), in = fixed_in;
+  using Item = std::pair<int, int>;  // (distance from the base, region)
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> ready;
+  for (int r = 0; r < nr; ++r)
+    if (in[size_t(r)] == 0) ready.push({std::max(0, dist[size_t(r)]), r});
+  while (!ready.empty()) {
+    const int u = ready.top().second;
+    ready.pop();
+    rank[size_t(u)] = int(order.size());
+    order.push_back(u);
+    for (int v : lower_than[size_t(u)])
+      if (--in[size_t(v)] == 0) ready.push({std::max(0, dist[size_t(v)]), v});
+  }
+  if (int(order.size()) < nr)
+    throw InputError("The fixed step directions contradict each other: following them leads round a loop back to "
+                     "a region below itself. Check the directions given in the interpretation file.");
+  // Levels: the longest chain of steps below each region, every curve stepping up the order.
+  out.region_height.assign(size_t(nr), 0);
+  for (int u : order)
+    for (int v : adj[size_t(u)])
+      if (rank[size_t(v)] > rank[size_t(u)])
+        out.region_height[size_t(v)] = std::max(out.region_height[size_t(v)], out.region_height[size_t(u)] + 1);
+  out.step.assign(size_t(nc), 0);
+  for (int k = 0; k < nc; ++k) {
+    const auto [a, b] = out.sides[size_t(k)];
+    if (a >= 0 && b >= 0 && a != b) out.step[size_t(k)] = out.region_height[size_t(b)] - out.region_height[size_t(a)];
+  }
+  return out;
+}
+
+}  // namespace reliefkit

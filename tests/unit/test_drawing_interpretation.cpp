@@ -1,0 +1,68 @@
+// Interpreting line drawings (reliefkit/drawing_interpretation.h): drawings rendered here from known
+// nested reliefs; every step's sign and height must come out as drawn.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "reliefkit/drawing_interpretation.h"
+
+using namespace reliefkit;
+
+namespace {
+
+// An object (rectangle 40..560) holding a raised disc, a raised ring with a raised disc inside it
+// (two levels), and a raised square cut in two by a line (a junction of three curves).
+cv::Mat nested_drawing() {
+  cv::Mat img(600, 600, CV_8UC1, cv::Scalar(255));
+  cv::rectangle(img, {40, 40}, {560, 560}, cv::Scalar(0), 2, cv::LINE_AA);
+  cv::circle(img, {160, 160}, 70, cv::Scalar(0), 2, cv::LINE_AA);
+  cv::circle(img, {420, 170}, 90, cv::Scalar(0), 2, cv::LINE_AA);
+  cv::circle(img, {420, 170}, 40, cv::Scalar(0), 2, cv::LINE_AA);
+  cv::rectangle(img, {120, 340}, {460, 480}, cv::Scalar(0), 2, cv::LINE_AA);
+  cv::line(img, {290, 340}, {290, 480}, cv::Scalar(0), 2, cv::LINE_AA);
+  return img;
+}
+
+int region_of(const DrawingInterpretation& d, int x, int y) { return d.regions.at<int>(y, x); }
+
+}  // namespace
+
+TEST(DrawingInterpretation, NestedReliefsGetTheirLevels) {
+  const DrawingCurves c = extract_drawing_curves(nested_drawing());
+  const DrawingInterpretation d = interpret_drawing(c);
+  const int object = region_of(d, 300, 300), disc = region_of(d, 160, 160), ring = region_of(d, 420, 100),
+            inner = region_of(d, 420, 170), left = region_of(d, 200, 410), right = region_of(d, 380, 410);
+  for (int r : {object, disc, ring, inner, left, right}) ASSERT_GE(r, 0);
+  std::printf("[drawing interpretation] %zu curves, %d regions; heights: object %d, disc %d, ring %d, inner disc %d, "
+              "square halves %d / %d\n",
+              c.curves.size(), d.region_count, d.region_height[object], d.region_height[disc], d.region_height[ring],
+              d.region_height[inner], d.region_height[left], d.region_height[right]);
+  const auto& h = d.region_height;
+  EXPECT_EQ(h[disc] - h[object], 1);
+  EXPECT_EQ(h[ring] - h[object], 1);
+  EXPECT_EQ(h[inner] - h[ring], 1);
+  EXPECT_GE(std::min(h[left], h[right]) - h[object], 1);
+  EXPECT_EQ(std::abs(h[left] - h[right]), 1);  // the dividing line is a step too (Constraint 1)
+}
+
+TEST(DrawingInterpretation, FixedDirectionsAreKeptAndContradictionsRefused) {
+  const DrawingCurves c = extract_drawing_curves(nested_drawing());
+  DrawingInterpretation d = interpret_drawing(c);
+  const int inner = d.regions.at<int>(170, 420);
+  int k = -1;  // the inner circle's curve: one side is the inner disc
+  for (size_t i = 0; i < d.sides.size(); ++i)
+    if (d.sides[i][0] == inner || d.sides[i][1] == inner) k = int(i);
+  ASSERT_GE(k, 0);
+  InterpretationParams p;
+  const bool inner_on_left = d.sides[size_t(k)][0] == inner;
+  p.fixed.push_back({k, inner_on_left});  // the inner disc lower than the ring: sunken
+  const DrawingInterpretation f = interpret_drawing(c, p);
+  const int ring = f.regions.at<int>(100, 420);
+  EXPECT_LT(f.region_height[inner], f.region_height[ring]);
+  // A contradiction: the same curve fixed both ways.
+  p.fixed.push_back({k, !inner_on_left});
+  EXPECT_THROW(interpret_drawing(c, p), InputError);
+  InterpretationParams bad;
+  bad.fixed.push_back({int(c.curves.size()) + 5, true});
+  EXPECT_THROW(interpret_drawing(c, bad), InputError);
+}
