@@ -66,3 +66,39 @@ TEST(DrawingInterpretation, FixedDirectionsAreKeptAndContradictionsRefused) {
   bad.fixed.push_back({int(c.curves.size()) + 5, true});
   EXPECT_THROW(interpret_drawing(c, bad), InputError);
 }
+
+#include "reliefkit/drawing_relief.h"
+
+TEST(DrawingRelief, NestedReliefsReconstructToTheirLevels) {
+  const cv::Mat img = nested_drawing();
+  const DrawingCurves c = extract_drawing_curves(img);
+  const DrawingInterpretation d = interpret_drawing(c);
+  DrawingReliefParams p;
+  const TriMesh grid = drawing_grid(img.cols, img.rows, 2.0, p.pixel_size);
+  const DrawingRelief r = reconstruct_drawing_relief(grid, c, d, p);
+  // Heights far from every curve (over 3 margins) against the regions' levels.
+  cv::Mat ink(img.rows, img.cols, CV_8U, cv::Scalar(255));
+  for (const auto& cv_ : c.curves)
+    for (const auto& q : cv_) ink.at<uchar>(int(std::lround(q.y())), int(std::lround(q.x()))) = 0;
+  cv::Mat dist;
+  cv::distanceTransform(ink, dist, cv::DIST_L2, 5);
+  double num = 0, den = 0;
+  std::vector<std::pair<double, double>> pairs;  // (level, height)
+  for (int v = 0; v < grid.n_vertices(); ++v) {
+    const int x = int(std::lround(grid.vertices[v].x())), y = int(std::lround(-grid.vertices[v].y()));
+    const int reg = d.regions.at<int>(y, x);
+    if (reg < 0 || dist.at<float>(y, x) < 3 * p.margin) continue;
+    if (reg == d.regions.at<int>(5, 5)) continue;  // the paper outside the object
+    pairs.push_back({double(d.region_height[size_t(reg)]), r.height[size_t(v)]});
+    num += pairs.back().first * pairs.back().second, den += pairs.back().first * pairs.back().first;
+  }
+  const double scale = den > 0 ? num / den : 0;  // the global scale fit
+  double s2 = 0;
+  for (const auto& [lv, h] : pairs) s2 += (h - scale * lv) * (h - scale * lv);
+  const double rms = std::sqrt(s2 / pairs.size()) / (scale > 0 ? scale : 1);
+  std::printf("[drawing relief] %d vertices, scale fit %.3f per level, RMS error %.3f step (%zu samples); solve: %s\n",
+              grid.n_vertices(), scale, rms, pairs.size(),
+              r.relief_solve.summary().c_str());
+  EXPECT_GT(scale, 0.5);
+  EXPECT_LE(rms, 0.1);
+}

@@ -1,0 +1,40 @@
+// ReliefKit — a relief from an interpreted line drawing (thesis section 7.4).
+//
+// Near every curve (within the margin width w) the relief is a smoothed step across the curve
+// from the height of its lower side to that of its higher side (eqs. 7.1-7.3; the sides' heights
+// are the regions' topological levels times the step height, so the constants C_p of eq. 7.3 are
+// known). Elsewhere the relief is the smoothest surface that meets them: first its Laplacian L,
+// L = Delta r in the margins and Delta L = 0 elsewhere (eq. 7.4), then R = r in the margins and
+// Delta R = L elsewhere (eq. 7.6) — the bi-Laplacian interpolation keeps the surface between the
+// curves curved instead of flat. Both are sparse symmetric positive-definite solves on the free
+// vertices (reliefkit/solvers.h). Where margins of close curves overlap, a vertex takes the
+// profile of its nearest curve.
+#pragma once
+
+#include "reliefkit/drawing_interpretation.h"
+#include "reliefkit/solvers.h"
+
+namespace reliefkit {
+
+struct DrawingReliefParams {
+  double margin = 4;          // w, px: the half-width of a step's profile
+  double step_height = 1;     // mesh units per level
+  double pixel_size = 1;      // mesh units per pixel (image x right, y down -> mesh x right, y up)
+  void validate() const;
+};
+
+struct DrawingRelief {
+  std::vector<double> height;      // per base vertex, over the base
+  std::vector<char> in_margin;     // per base vertex: on a step's profile (a boundary condition)
+  SolveReport relief_solve;
+};
+
+/// The relief on a flat base whose vertices lie in the drawing's plane (x, y in mesh units:
+/// pixel (px, py) is at (px * pixel_size, -py * pixel_size)); `base` gives the connectivity.
+DrawingRelief reconstruct_drawing_relief(const TriMesh& base, const DrawingCurves& curves,
+                                         const DrawingInterpretation& interpretation, const DrawingReliefParams& params);
+
+/// A regular grid over the drawing (one vertex every `cell` px), z = 0: the flat base.
+TriMesh drawing_grid(int width, int height, double cell, double pixel_size);
+
+}  // namespace reliefkit

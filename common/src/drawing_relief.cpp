@@ -1,0 +1,157 @@
+#include "reliefkit/drawing_relief.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <Eigen/Sparse>
+#include <algorithm>
+#include <cmath>
+
+#include "reliefkit/laplacian.h"
+#include "reliefkit/scale.h"
+
+namespace reliefkit {
+
+void DrawingReliefParams::validate() const {
+  require_range(margin, "Margin width (px)", 0.5, 1000);
+  require_range(step_height, "Step height", 1e-12, 1e12);
+  require_range(pixel_size, "Pixel size", 1e-12, 1e12);
+}
+
+TriMesh drawing_grid(int width, int height, double cell, double pixel_size) {
+  if (width < 2 || height < 2) throw InputError("The drawing is too small for a relief (at least 2 x 2 pixels).");
+  require_range(cell, "Grid cell (px)", 0.1, 1e6);
+  const int nx = std::max(2, int(std::ceil((width - 1) / cell)) + 1), ny = std::max(2, int(std::ceil((height - 1) / cell)) + 1);
+  TriMesh m;
+  m.vertices.reserve(size_t(nx) * ny);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const double px = std::min(i * cell, double(width - 1)), py = std::min(j * cell, double(height - 1));
+      m.vertices.push_back(Vec3(px * pixel_size, -py * pixel_size, 0));
+    }
+  for (int j = 0; j + 1 < ny; ++j)
+    for (int i = 0; i + 1 < nx; ++i) {
+      const int a = j * nx + i, b = a + 1, c = a + nx, d = c + 1;
+      // Counter-clockwise seen from +z (y up in mesh units; image rows go down).
+      m.faces.push_back({a, d, b});
+      m.faces.push_back({a, c, d});
+    }
+  return m;
+}
+
+namespace {
+
+// The step's profile s(t), t in [-1, 1] (eq. 7.1): 0 to 1 with zero first and second derivatives
+// at both ends, so that the Laplacian of r vanishes where the margin meets the free surface. (A
+// tanh cut at the margin left a curvature of 0.27 / w^2 there, which eq. 7.4 carried into whole
+// regions: 8 steps of bulge on the test drawing.)
+double step_profile(double t) {
+  t = std::clamp(t, -1.0, 1.0);
+  return 0.5 + (15 * t - 10 * t * t * t + 3 * t * t * t * t * t) / 16;
+}
+
+// K_FF x_F = rhs_F for the free vertices of the SPD stiffness K (+ a tiny mass term, so that a
+// part without any fixed vertex still has a unique solution).
+SolveReport solve_free(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& mass, const std::vector<int>& free_of,
+                       int nfree, const Eigen::VectorXd& rhs_free, Eigen::VectorXd& x_free) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int c = 0; c < K.outerSize(); ++c) {
+    const int fc = free_of[size_t(c)];
+    if (fc < 0) continue;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(K, c); it; ++it) {
+      const int fr = free_of[size_t(it.row())];
+      if (fr >= 0) t.emplace_back(fr, fc, it.value());
+    }
+    t.emplace_back(fc, fc, 1e-9 * mass[c]);
+  }
+  Eigen::SparseMatrix<double> A(nfree, nfree);
+  A.setFromTriplets(t.begin(), t.end());
+  SolverOptions so;
+  so.method = SolverMethod::Direct;
+  so.tolerance = 1e-8;
+  Eigen::MatrixXd X;
+  const SolveReport r = solve_spd(A, rhs_free, X, so);
+  x_free = X.col(0);
+  return r;
+}
+
+}  // namespace
+
+DrawingRelief reconstruct_drawing_relief(const TriMesh& base, const DrawingCurves& dc, const DrawingInterpretation& di,
+                                         const DrawingReliefParams& p) {
+  p.validate();
+  require_triangles(base);
+  const int nv = base.n_vertices();
+  DrawingRelief out;
+  out.height.assign(size_t(nv), 0);
+  out.in_margin.assign(size_t(nv), 0);
+  // Nearest curve and distance per pixel: distance transform of the curves' pixels, each pixel's
+  // nearest ink pixel's curve.
+  cv::Mat curve_of(dc.height, dc.width, CV_32S, cv::Scalar(-1)), ink(dc.height, dc.width, CV_8U, cv::Scalar(255));
+  for (size_t k = 0; k < dc.curves.size(); ++k) {
+    std::vector<cv::Point> pts;
+    for (const auto& q : dc.curves[k]) pts.emplace_back(int(std::lround(q.x())), int(std::lround(q.y())));
+    cv::polylines(curve_of, pts, false, cv::Scalar(int(k)), 1, cv::LINE_8);
+    cv::polylines(ink, pts, false, cv::Scalar(0), 1, cv::LINE_8);
+  }
+  cv::Mat dist, label;
+  cv::distanceTransform(ink, dist, label, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
+  std::vector<int> curve_of_label(size_t(dc.width) * dc.height + 2, -1);
+  for (int y = 0; y < dc.height; ++y)
+    for (int x = 0; x < dc.width; ++x)
+      if (ink.at<uchar>(y, x) == 0) curve_of_label[size_t(label.at<int>(y, x))] = curve_of.at<int>(y, x);
+  // The local relief r at every vertex within the margin of a curve whose sides are known.
+  std::vector<double> r(size_t(nv), 0);
+  for (int v = 0; v < nv; ++v) {
+    const double px = base.vertices[v].x() / p.pixel_size, py = -base.vertices[v].y() / p.pixel_size;
+    const int x = int(std::lround(px)), y = int(std::lround(py));
+    if (x < 0 || y < 0 || x >= dc.width || y >= dc.height) continue;
+    const double d = dist.at<float>(y, x);
+    if (d > p.margin) continue;
+    const int k = curve_of_label[size_t(label.at<int>(y, x))];
+    if (k < 0) continue;
+    const auto [a, b] = di.sides[size_t(k)];
+    if (a < 0 || b < 0 || a == b) continue;
+    const double ha = di.region_height[size_t(a)] * p.step_height, hb = di.region_height[size_t(b)] * p.step_height;
+    const int reg = di.regions.at<int>(y, x);
+    double sv;  // signed distance, positive on the curve's right side
+    if (reg == a)
+      sv = -d;
+    else if (reg == b)
+      sv = d;
+    else if (reg < 0)
+      sv = 0;
+    else
+      continue;  // another curve's region: leave it to that curve
+    r[size_t(v)] = ha + (hb - ha) * step_profile(sv / p.margin);
+    out.in_margin[size_t(v)] = 1;
+  }
+  // eqs. 7.4 + 7.6 as one energy: R = r in the margins, elsewhere the surface of least bending,
+  // min integral (Delta R)^2: (K M^-1 K) R = 0 on the free vertices. The margins are bands several
+  // vertices wide, so R there fixes both the values and the slopes the free surface continues —
+  // what eq. 7.4's L carries. (Solving eq. 7.4 first, with L = Delta r from the discrete profile,
+  // carried the profile's discretisation error into whole regions: 8 steps of bulge on the test
+  // drawing.)
+  const MeshTopology topo = mesh_topology(base);
+  const LaplacianResult lap = cotangent_laplacian(base, topo);
+  const Eigen::SparseMatrix<double> K = -lap.L;  // positive semi-definite stiffness
+  Eigen::VectorXd inv_mass(nv);
+  for (int v = 0; v < nv; ++v) inv_mass[v] = lap.mass[v] > 0 ? 1 / lap.mass[v] : 0;
+  const Eigen::SparseMatrix<double> B = K * inv_mass.asDiagonal() * K;
+  std::vector<int> free2(size_t(nv), -1);
+  int nfree2 = 0;
+  Eigen::VectorXd Rc = Eigen::VectorXd::Zero(nv);
+  for (int v = 0; v < nv; ++v)
+    if (out.in_margin[size_t(v)])
+      Rc[v] = r[size_t(v)];
+    else
+      free2[size_t(v)] = nfree2++;
+  const Eigen::VectorXd BRc = B * Rc;
+  Eigen::VectorXd rhs2(nfree2), Rf;
+  for (int v = 0; v < nv; ++v)
+    if (free2[size_t(v)] >= 0) rhs2[free2[size_t(v)]] = -BRc[v];
+  out.relief_solve = solve_free(B, lap.mass, free2, nfree2, rhs2, Rf);
+  for (int v = 0; v < nv; ++v) out.height[size_t(v)] = free2[size_t(v)] >= 0 ? Rf[free2[size_t(v)]] : Rc[v];
+  return out;
+}
+
+}  // namespace reliefkit
