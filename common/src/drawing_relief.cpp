@@ -49,6 +49,12 @@ double step_profile(double t) {
   return 0.5 + (15 * t - 10 * t * t * t + 3 * t * t * t * t * t) / 16;
 }
 
+// Each margin is held over kFlatBand x its width: the profile within w of the curve, flat beyond.
+// The thin plate continues the curvature it meets at the band's edge; with the profile alone
+// (two grid rows on either side) the raised discs of the test drawing bulged by two steps and the
+// ground between them sagged by one.
+constexpr double kFlatBand = 4.0;
+
 // K_FF x_F = rhs_F for the free vertices of the SPD stiffness K (+ a tiny mass term, so that a
 // part without any fixed vertex still has a unique solution).
 SolveReport solve_free(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& mass, const std::vector<int>& free_of,
@@ -106,7 +112,7 @@ DrawingRelief reconstruct_drawing_relief(const TriMesh& base, const DrawingCurve
     const int x = int(std::lround(px)), y = int(std::lround(py));
     if (x < 0 || y < 0 || x >= dc.width || y >= dc.height) continue;
     const double d = dist.at<float>(y, x);
-    if (d > p.margin) continue;
+    if (d > kFlatBand * p.margin) continue;  // the profile, then a flat band (see kFlatBand)
     const int k = curve_of_label[size_t(label.at<int>(y, x))];
     if (k < 0) continue;
     const auto [a, b] = di.sides[size_t(k)];
