@@ -133,56 +133,61 @@ DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionPa
   std::vector<int> order(pts.size());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](int i, int j) { return pts[i].strength > pts[j].strength; });
-  std::vector<char> used(pts.size(), 0);
+  std::vector<int> chain_of(pts.size(), -1);  // which chain a point was linked into
   const double cos_turn = std::cos(p.max_link_turn);
-  auto next_point = [&](int i, double dirx, double diry, bool& hit_used) {
+  // The best point ahead of point i along (dirx, diry): unused points first; when only points of
+  // other chains are ahead, the nearest of them is returned with `other` set (a junction).
+  auto next_point = [&](int i, double dirx, double diry, int chain, bool& other) {
     const LinePoint& q = pts[i];
     const int cx = int(std::lround(q.x)), cy = int(std::lround(q.y));
-    int best = -1;
-    double best_cost = 1e300;
-    hit_used = false;
+    int best = -1, best_other = -1;
+    double best_cost = 1e300, best_other_cost = 1e300;
+    other = false;
     for (int oy = -1; oy <= 1; ++oy)
       for (int ox = -1; ox <= 1; ++ox) {
         if (!ox && !oy) continue;
         const int x = cx + ox, y = cy + oy;
         if (x < 0 || y < 0 || x >= W || y >= H) continue;
         const int j = at[size_t(y) * W + x];
-        if (j < 0 || j == i) continue;
+        if (j < 0 || j == i || chain_of[size_t(j)] == chain) continue;
         const double vx = pts[j].x - q.x, vy = pts[j].y - q.y, dist = std::hypot(vx, vy);
         if (dist > p.max_link_gap || dist < 1e-6) continue;
         if ((vx * dirx + vy * diry) / dist < 0.5) continue;  // ahead, within 60 degrees
         const double turn = std::abs(pts[j].dx * dirx + pts[j].dy * diry);
         if (turn < cos_turn) continue;
         const double cost = dist + 2 * (1 - turn);
-        if (cost < best_cost) best_cost = cost, best = j;
+        if (chain_of[size_t(j)] < 0) {
+          if (cost < best_cost) best_cost = cost, best = j;
+        } else if (cost < best_other_cost) {
+          best_other_cost = cost, best_other = j;
+        }
       }
-    if (best >= 0 && used[best]) {
-      hit_used = true;
-      return best;
-    }
-    return best;
+    if (best >= 0) return best;
+    other = best_other >= 0;
+    return best_other;
   };
+  int chains = 0;
   for (int s : order) {
-    if (used[s]) continue;
-    used[s] = 1;
+    if (chain_of[size_t(s)] >= 0) continue;
+    const int id = chains++;
+    chain_of[size_t(s)] = id;
     std::vector<int> chain{s};
     for (int side = 0; side < 2; ++side) {
       std::vector<int> ext;
       int cur = s;
       double dirx = side ? -pts[s].dx : pts[s].dx, diry = side ? -pts[s].dy : pts[s].dy;
       for (;;) {
-        bool hit = false;
-        const int n = next_point(cur, dirx, diry, hit);
+        bool other = false;
+        const int n = next_point(cur, dirx, diry, id, other);
         if (n < 0) break;
-        if (hit) {  // ran into another curve (or itself): a junction, the curve ends there
+        if (other) {  // ran into another curve: a junction, this curve ends there
           out.junctions.push_back(Vec2(pts[n].x, pts[n].y));
           ext.push_back(n);
           break;
         }
-        used[n] = 1;
+        chain_of[size_t(n)] = id;
         ext.push_back(n);
-        // keep the direction's orientation continuous
-        const double ndx = pts[n].dx, ndy = pts[n].dy;
+        const double ndx = pts[n].dx, ndy = pts[n].dy;  // keep the orientation continuous
         if (ndx * dirx + ndy * diry >= 0)
           dirx = ndx, diry = ndy;
         else
