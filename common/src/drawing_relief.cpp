@@ -102,10 +102,22 @@ DrawingRelief reconstruct_drawing_relief(const TriMesh& base, const DrawingCurve
   cv::Mat dist, label;
   cv::distanceTransform(ink, dist, label, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
   std::vector<int> curve_of_label(size_t(dc.width) * dc.height + 2, -1);
+  std::vector<cv::Point> pixel_of_label(size_t(dc.width) * dc.height + 2);
   for (int y = 0; y < dc.height; ++y)
     for (int x = 0; x < dc.width; ++x)
-      if (ink.at<uchar>(y, x) == 0) curve_of_label[size_t(label.at<int>(y, x))] = curve_of.at<int>(y, x);
-  // The local relief r at every vertex within the margin of a curve whose sides are known.
+      if (ink.at<uchar>(y, x) == 0) {
+        const size_t l = size_t(label.at<int>(y, x));
+        curve_of_label[l] = curve_of.at<int>(y, x);
+        pixel_of_label[l] = cv::Point(x, y);
+      }
+  auto region_at_px = [&](double x, double y) {
+    const int xi = int(std::lround(x)), yi = int(std::lround(y));
+    if (xi < 0 || yi < 0 || xi >= dc.width || yi >= dc.height) return -1;
+    return di.regions.at<int>(yi, xi);
+  };
+  // The local relief r at every vertex within the margin of a curve: from the height of its own
+  // region to that of the region across the nearest curve point, seen locally (a curve running past
+  // a junction has different regions beside it along its length, so its sides are not one pair).
   std::vector<double> r(size_t(nv), 0);
   for (int v = 0; v < nv; ++v) {
     const double px = base.vertices[v].x() / p.pixel_size, py = -base.vertices[v].y() / p.pixel_size;
@@ -113,22 +125,27 @@ DrawingRelief reconstruct_drawing_relief(const TriMesh& base, const DrawingCurve
     if (x < 0 || y < 0 || x >= dc.width || y >= dc.height) continue;
     const double d = dist.at<float>(y, x);
     if (d > kFlatBand * p.margin) continue;  // the profile, then a flat band (see kFlatBand)
-    const int k = curve_of_label[size_t(label.at<int>(y, x))];
+    const size_t l = size_t(label.at<int>(y, x));
+    const int k = curve_of_label[l];
     if (k < 0) continue;
-    const auto [a, b] = di.sides[size_t(k)];
-    if (a < 0 || b < 0 || a == b) continue;
-    const double ha = di.region_height[size_t(a)] * p.step_height, hb = di.region_height[size_t(b)] * p.step_height;
-    const int reg = di.regions.at<int>(y, x);
-    double sv;  // signed distance, positive on the curve's right side
-    if (reg == a)
-      sv = -d;
-    else if (reg == b)
-      sv = d;
-    else if (reg < 0)
-      sv = 0;
-    else
-      continue;  // another curve's region: leave it to that curve
-    r[size_t(v)] = ha + (hb - ha) * step_profile(sv / p.margin);
+    const cv::Point q = pixel_of_label[l];
+    const int own = di.regions.at<int>(y, x);
+    double ux = x - q.x, uy = y - q.y;
+    const double un = std::hypot(ux, uy);
+    int across = -1, here = own;
+    if (un > 0) {
+      ux /= un, uy /= un;
+      for (double step = std::max(d, 2.0); step <= 2 * p.margin + 3 && across < 0; step += 1)
+        across = region_at_px(q.x - ux * step, q.y - uy * step);
+      if (here < 0)
+        for (double step = 2.0; step <= 2 * p.margin + 3 && here < 0; step += 1) here = region_at_px(q.x + ux * step, q.y + uy * step);
+    } else {  // on the curve: its two sides as the curve records them
+      here = di.sides[size_t(k)][0], across = di.sides[size_t(k)][1];
+    }
+    if (here < 0 || across < 0) continue;
+    const double hh = di.region_height[size_t(here)] * p.step_height, ha = di.region_height[size_t(across)] * p.step_height;
+    // Distance signed positive on this side: s(+d / w) of the way from the far side's height.
+    r[size_t(v)] = ha + (hh - ha) * step_profile(d / p.margin);
     out.in_margin[size_t(v)] = 1;
   }
   // eqs. 7.4 + 7.6 as one energy: R = r in the margins, elsewhere the surface of least bending,

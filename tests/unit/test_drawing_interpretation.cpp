@@ -76,7 +76,7 @@ TEST(DrawingRelief, NestedReliefsReconstructToTheirLevels) {
   DrawingReliefParams p;
   const TriMesh grid = drawing_grid(img.cols, img.rows, 2.0, p.pixel_size);
   const DrawingRelief r = reconstruct_drawing_relief(grid, c, d, p);
-  // Heights far from every curve (over 3 margins) against the regions' levels.
+  // Heights of the free surface against the regions. levels.
   cv::Mat ink(img.rows, img.cols, CV_8U, cv::Scalar(255));
   for (const auto& cv_ : c.curves)
     for (const auto& q : cv_) ink.at<uchar>(int(std::lround(q.y())), int(std::lround(q.x()))) = 0;
@@ -87,7 +87,7 @@ TEST(DrawingRelief, NestedReliefsReconstructToTheirLevels) {
   for (int v = 0; v < grid.n_vertices(); ++v) {
     const int x = int(std::lround(grid.vertices[v].x())), y = int(std::lround(-grid.vertices[v].y()));
     const int reg = d.regions.at<int>(y, x);
-    if (reg < 0 || dist.at<float>(y, x) < 3 * p.margin) continue;
+    if (reg < 0 || r.in_margin[size_t(v)]) continue;  // the free surface only (margins are held)
     if (reg == d.regions.at<int>(5, 5)) continue;  // the paper outside the object
     pairs.push_back({double(d.region_height[size_t(reg)]), r.height[size_t(v)]});
     num += pairs.back().first * pairs.back().second, den += pairs.back().first * pairs.back().first;
