@@ -15,6 +15,7 @@ namespace reliefkit {
 void InterpretationParams::validate() const {
   require_range(margin, "Margin width (px)", 0.5, 1000);
   require_range(gap_close, "Gap closing (px)", 0, 1000);
+  require_range(min_region_area, "Smallest region (px^2)", 0, 1e12);
 }
 
 namespace {
@@ -69,6 +70,22 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
   labels -= 1;  // the curves' label 0 becomes -1; regions 0 .. n-2
   out.regions = labels;
   out.region_count = std::max(0, n - 1);
+  // Region areas, and which regions touch the image's border (the paper around the object).
+  const int nr = out.region_count;
+  std::vector<char> small(size_t(nr), 0), border(size_t(nr), 0);
+  {
+    std::vector<long> area(size_t(nr), 0);
+    for (int y = 0; y < labels.rows; ++y) {
+      const int* row = labels.ptr<int>(y);
+      for (int x = 0; x < labels.cols; ++x)
+        if (row[x] >= 0) {
+          ++area[size_t(row[x])];
+          if (x == 0 || y == 0 || x == labels.cols - 1 || y == labels.rows - 1) border[size_t(row[x])] = 1;
+        }
+    }
+    // Specks between dots of stippling or strokes of hatching are shading, not parts of the relief.
+    for (int r = 0; r < nr; ++r) small[size_t(r)] = area[size_t(r)] < p.min_region_area;
+  }
 
   // Each curve's two sides, by a vote of samples at `margin` beside it.
   out.sides.assign(size_t(nc), {-1, -1});
@@ -88,14 +105,13 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
     out.sides[size_t(k)] = {majority(left), majority(right)};
   }
 
-  // The graph: regions, curves between two different regions.
-  const int nr = out.region_count;
+  // The graph: regions, curves between two different regions (neither of them a speck).
   std::vector<std::set<int>> adj(static_cast<size_t>(nr));
   std::vector<std::vector<int>> lower_than(static_cast<size_t>(nr));  // fixed: region -> regions that must be above it
   std::vector<int> fixed_in(size_t(nr), 0);
   for (int k = 0; k < nc; ++k) {
     const auto [a, b] = out.sides[size_t(k)];
-    if (a < 0 || b < 0 || a == b) {
+    if (a < 0 || b < 0 || a == b || small[size_t(a)] || small[size_t(b)]) {
       ++out.ignored_curves;
       continue;
     }
@@ -103,7 +119,7 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
   }
   for (const auto& f : p.fixed) {
     const auto [a, b] = out.sides[size_t(f.curve)];
-    if (a < 0 || b < 0 || a == b) continue;
+    if (a < 0 || b < 0 || a == b || small[size_t(a)] || small[size_t(b)]) continue;
     const int lo = f.left_lower ? a : b, hi = f.left_lower ? b : a;
     lower_than[size_t(lo)].push_back(hi);
     ++fixed_in[size_t(hi)];
@@ -123,6 +139,11 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
         if (dist[size_t(v)] < 0) dist[size_t(v)] = dist[size_t(u)] + 1, q.push_back(v);
     }
   };
+  // The paper around the drawn object is the ground the relief stands on (unless the user asks for
+  // the thesis' heuristic alone); then, per connected part of the graph, the thesis' base.
+  if (p.paper_is_base)
+    for (int r = 0; r < nr; ++r)
+      if (border[size_t(r)] && !small[size_t(r)] && fixed_in[size_t(r)] == 0 && !adj[size_t(r)].empty()) start_from(r);
   for (;;) {  // one base per connected part of the graph
     int best = -1;
     for (int r = 0; r < nr; ++r)
@@ -162,7 +183,7 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
   out.step.assign(size_t(nc), 0);
   for (int k = 0; k < nc; ++k) {
     const auto [a, b] = out.sides[size_t(k)];
-    if (a >= 0 && b >= 0 && a != b) out.step[size_t(k)] = out.region_height[size_t(b)] - out.region_height[size_t(a)];
+    if (a >= 0 && b >= 0 && a != b && !small[size_t(a)] && !small[size_t(b)]) out.step[size_t(k)] = out.region_height[size_t(b)] - out.region_height[size_t(a)];
   }
   return out;
 }

@@ -58,7 +58,7 @@ constexpr double kFlatBand = 4.0;
 // K_FF x_F = rhs_F for the free vertices of the SPD stiffness K (+ a tiny mass term, so that a
 // part without any fixed vertex still has a unique solution).
 SolveReport solve_free(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& mass, const std::vector<int>& free_of,
-                       int nfree, const Eigen::VectorXd& rhs_free, Eigen::VectorXd& x_free) {
+                       int nfree, const Eigen::VectorXd& rhs_free, Eigen::VectorXd& x_free, const Eigen::VectorXd& guess) {
   std::vector<Eigen::Triplet<double>> t;
   for (int c = 0; c < K.outerSize(); ++c) {
     const int fc = free_of[size_t(c)];
@@ -72,9 +72,10 @@ SolveReport solve_free(const Eigen::SparseMatrix<double>& K, const Eigen::Vector
   Eigen::SparseMatrix<double> A(nfree, nfree);
   A.setFromTriplets(t.begin(), t.end());
   SolverOptions so;
-  so.method = SolverMethod::Direct;
+  so.method = SolverMethod::Auto;  // CG from the guess; CHOLMOD when it does not converge
   so.tolerance = 1e-8;
-  Eigen::MatrixXd X;
+  so.max_iterations = 2000;
+  Eigen::MatrixXd X = guess;
   const SolveReport r = solve_spd(A, rhs_free, X, so);
   x_free = X.col(0);
   return r;
@@ -115,6 +116,11 @@ DrawingRelief reconstruct_drawing_relief(const TriMesh& base, const DrawingCurve
     if (xi < 0 || yi < 0 || xi >= dc.width || yi >= dc.height) return -1;
     return di.regions.at<int>(yi, xi);
   };
+  // A vertex's level (its region's, in mesh units; 0 on a curve or outside the drawing).
+  auto level_of = [&](int v) {
+    const int reg = region_at_px(base.vertices[v].x() / p.pixel_size, -base.vertices[v].y() / p.pixel_size);
+    return reg >= 0 ? di.region_height[size_t(reg)] * p.step_height : 0.0;
+  };
   // The local relief r at every vertex within the margin of a curve: from the height of its own
   // region to that of the region across the nearest curve point, seen locally (a curve running past
   // a junction has different regions beside it along its length, so its sides are not one pair).
@@ -148,18 +154,38 @@ DrawingRelief reconstruct_drawing_relief(const TriMesh& base, const DrawingCurve
     r[size_t(v)] = ha + (hh - ha) * step_profile(d / p.margin);
     out.in_margin[size_t(v)] = 1;
   }
-  // eqs. 7.4 + 7.6 as one energy: R = r in the margins, elsewhere the surface of least bending,
-  // min integral (Delta R)^2: (K M^-1 K) R = 0 on the free vertices. The margins are bands several
-  // vertices wide, so R there fixes both the values and the slopes the free surface continues —
-  // what eq. 7.4's L carries. (Solving eq. 7.4 first, with L = Delta r from the discrete profile,
-  // carried the profile's discretisation error into whole regions: 8 steps of bulge on the test
-  // drawing.)
+  // eqs. 7.4 and 7.6, two Laplacian solves. L: the Laplacian of r where a vertex and all its
+  // neighbours are in a margin (there Delta r is known), harmonic elsewhere. R: r in the margins,
+  // Delta R = L elsewhere. Because each margin is held flat beyond its profile (kFlatBand), L fades
+  // to zero at the margins' outer edges and the free surface between curves follows the levels.
   const MeshTopology topo = mesh_topology(base);
   const LaplacianResult lap = cotangent_laplacian(base, topo);
   const Eigen::SparseMatrix<double> K = -lap.L;  // positive semi-definite stiffness
-  Eigen::VectorXd inv_mass(nv);
-  for (int v = 0; v < nv; ++v) inv_mass[v] = lap.mass[v] > 0 ? 1 / lap.mass[v] : 0;
-  const Eigen::SparseMatrix<double> B = K * inv_mass.asDiagonal() * K;
+  Eigen::VectorXd rv(nv);
+  for (int v = 0; v < nv; ++v) rv[v] = r[size_t(v)];
+  const Eigen::VectorXd Kr = K * rv;
+  std::vector<char> interior(out.in_margin);  // margin vertices whose neighbours are all in margins
+  for (int c = 0; c < K.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(K, c); it; ++it)
+      if (!out.in_margin[size_t(it.row())]) interior[size_t(c)] = 0;
+  // Step 1 (eq. 7.4): L = Delta r = -M^-1 K r on the interior margin vertices; K L = 0 elsewhere.
+  std::vector<int> free1(size_t(nv), -1);
+  int nfree1 = 0;
+  Eigen::VectorXd Lc = Eigen::VectorXd::Zero(nv);
+  for (int v = 0; v < nv; ++v)
+    if (interior[size_t(v)])
+      Lc[v] = lap.mass[v] > 0 ? -Kr[v] / lap.mass[v] : 0;
+    else
+      free1[size_t(v)] = nfree1++;
+  const Eigen::VectorXd KLc = K * Lc;
+  Eigen::VectorXd rhs1(nfree1), Lf;
+  for (int v = 0; v < nv; ++v)
+    if (free1[size_t(v)] >= 0) rhs1[free1[size_t(v)]] = -KLc[v];
+  out.laplacian_solve = solve_free(K, lap.mass, free1, nfree1, rhs1, Lf, Eigen::VectorXd::Zero(nfree1));
+  Eigen::VectorXd Lap = Lc;
+  for (int v = 0; v < nv; ++v)
+    if (free1[size_t(v)] >= 0) Lap[v] = Lf[free1[size_t(v)]];
+  // Step 2 (eq. 7.6): R = r in the margins; Delta R = L, i.e. K R = -M L, elsewhere.
   std::vector<int> free2(size_t(nv), -1);
   int nfree2 = 0;
   Eigen::VectorXd Rc = Eigen::VectorXd::Zero(nv);
@@ -168,11 +194,14 @@ DrawingRelief reconstruct_drawing_relief(const TriMesh& base, const DrawingCurve
       Rc[v] = r[size_t(v)];
     else
       free2[size_t(v)] = nfree2++;
-  const Eigen::VectorXd BRc = B * Rc;
+  const Eigen::VectorXd KRc = K * Rc;
   Eigen::VectorXd rhs2(nfree2), Rf;
   for (int v = 0; v < nv; ++v)
-    if (free2[size_t(v)] >= 0) rhs2[free2[size_t(v)]] = -BRc[v];
-  out.relief_solve = solve_free(B, lap.mass, free2, nfree2, rhs2, Rf);
+    if (free2[size_t(v)] >= 0) rhs2[free2[size_t(v)]] = -lap.mass[v] * Lap[v] - KRc[v];
+  Eigen::VectorXd guess2(nfree2);  // the interpretation's levels (what the thesis starts from)
+  for (int v = 0; v < nv; ++v)
+    if (free2[size_t(v)] >= 0) guess2[free2[size_t(v)]] = level_of(v);
+  out.relief_solve = solve_free(K, lap.mass, free2, nfree2, rhs2, Rf, guess2);
   for (int v = 0; v < nv; ++v) out.height[size_t(v)] = free2[size_t(v)] >= 0 ? Rf[free2[size_t(v)]] : Rc[v];
   return out;
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <unordered_map>
 
 #include "reliefkit/scale.h"
 
@@ -67,11 +68,111 @@ cv::Mat drawing_grey(const cv::Mat& image) {
 
 namespace {
 
+// Largest second derivative along a line point's direction, relative to the one across it.
+constexpr double kMaxAlongRatio = 0.7;
+
 struct LinePoint {
   float x, y;     // sub-pixel position
   float dx, dy;   // unit direction along the line
   float strength;
 };
+
+// The direction a polyline leaves by at its end `e` (0: front, 1: back), from the last few px.
+Vec2 end_direction(const std::vector<Vec2>& c, int e) {
+  const size_t n = c.size(), k = std::min<size_t>(n - 1, 4);
+  const Vec2 d = e ? c[n - 1] - c[n - 1 - k] : c[0] - c[k];
+  const double len = d.norm();
+  return len > 0 ? Vec2(d / len) : Vec2(0, 0);
+}
+
+// Line detection fades where lines meet or turn sharply (a corner's profile is no line's), so a
+// drawn stroke comes out in pieces whose ends face each other across a gap of about 2 sigma.
+// Ends are joined greedily, the cheapest pair first (gap plus a penalty for the turn), when the
+// gap is within `join` px and each end points towards the other; a piece whose two ends meet is
+// closed. Pieces are concatenated in place; `pieces` keeps only the joined results.
+void join_pieces(std::vector<std::vector<Vec2>>& pieces, const LineDetectionParams& p) {
+  const double join = 2.5 * p.sigma + 1.5;
+  struct End {
+    int piece, e;
+    Vec2 at, dir;
+  };
+  std::vector<End> ends;
+  for (size_t i = 0; i < pieces.size(); ++i)
+    for (int e = 0; e < 2; ++e) ends.push_back({int(i), e, e ? pieces[i].back() : pieces[i].front(), end_direction(pieces[i], e)});
+  // Candidate pairs through a grid of cell `join`.
+  const double cell = join;
+  std::unordered_map<long long, std::vector<int>> grid;
+  auto key = [&](const Vec2& q) {
+    return (long long)std::floor(q.x() / cell) * 1000003LL + (long long)std::floor(q.y() / cell);
+  };
+  for (size_t k = 0; k < ends.size(); ++k) grid[key(ends[k].at)].push_back(int(k));
+  struct Pair {
+    double cost;
+    int a, b;
+  };
+  std::vector<Pair> cand;
+  for (size_t a = 0; a < ends.size(); ++a) {
+    const long long gx = (long long)std::floor(ends[a].at.x() / cell), gy = (long long)std::floor(ends[a].at.y() / cell);
+    for (long long ox = -1; ox <= 1; ++ox)
+      for (long long oy = -1; oy <= 1; ++oy) {
+        auto it = grid.find((gx + ox) * 1000003LL + (gy + oy));
+        if (it == grid.end()) continue;
+        for (int b : it->second) {
+          if (b <= int(a)) continue;
+          const End &A = ends[a], &B = ends[size_t(b)];
+          if (A.piece == B.piece && pieces[size_t(A.piece)].size() < 8) continue;  // a speck does not close on itself
+          const Vec2 v = B.at - A.at;
+          const double gap = v.norm();
+          if (gap > join) continue;
+          double turn = 0;  // angle between A's way out and B's way in
+          if (gap > 0.5) {
+            const Vec2 u = v / gap;
+            if (A.dir.dot(u) < 0.3 || B.dir.dot(-u) < 0.3) continue;  // each end faces the other
+          }
+          turn = std::acos(std::clamp(-A.dir.dot(B.dir), -1.0, 1.0));
+          if (turn > 2.0) continue;  // sharper than ~115 degrees: not one stroke
+          cand.push_back({gap + 2 * turn, int(a), b});
+        }
+      }
+  }
+  std::sort(cand.begin(), cand.end(), [](const Pair& x, const Pair& y) { return x.cost < y.cost; });
+  // Union of pieces: each piece's current owner, and which end of the owner each end now is.
+  std::vector<char> used(ends.size(), 0), closed(pieces.size(), 0);
+  std::vector<int> owner(pieces.size());
+  std::iota(owner.begin(), owner.end(), 0);
+  auto find = [&](int i) {
+    while (owner[size_t(i)] != i) i = owner[size_t(i)] = owner[size_t(owner[size_t(i)])];
+    return i;
+  };
+  // Position of each end: (root piece, front/back). Joined ends are interior and never reused, so
+  // an unused end of piece i is still an end of the polyline held by find(i), at the same point.
+  for (const Pair& c : cand) {
+    if (used[size_t(c.a)] || used[size_t(c.b)]) continue;
+    const End &A = ends[size_t(c.a)], &B = ends[size_t(c.b)];
+    const int ra = find(A.piece), rb = find(B.piece);
+    auto& pa = pieces[size_t(ra)];
+    if (closed[size_t(ra)] || closed[size_t(rb)]) continue;
+    const bool a_back = (pa.back() - A.at).norm() < 1e-9, a_front = (pa.front() - A.at).norm() < 1e-9;
+    if (ra == rb) {  // both ends of one polyline: close it
+      if (!(a_back || a_front)) continue;
+      pa.push_back(pa.front());
+      closed[size_t(ra)] = 1;
+      used[size_t(c.a)] = used[size_t(c.b)] = 1;
+      continue;
+    }
+    auto& pb = pieces[size_t(rb)];
+    const bool b_front = (pb.front() - B.at).norm() < 1e-9, b_back = (pb.back() - B.at).norm() < 1e-9;
+    if (!(a_back || a_front) || !(b_front || b_back)) continue;
+    if (!a_back) std::reverse(pa.begin(), pa.end());  // A's end last
+    if (!b_front) std::reverse(pb.begin(), pb.end());  // B's end first
+    pa.insert(pa.end(), pb.begin(), pb.end());
+    pb.clear();
+    owner[size_t(rb)] = ra;
+    used[size_t(c.a)] = used[size_t(c.b)] = 1;
+  }
+  pieces.erase(std::remove_if(pieces.begin(), pieces.end(), [](const std::vector<Vec2>& c) { return c.size() < 2; }),
+               pieces.end());
+}
 
 }  // namespace
 
@@ -105,6 +206,8 @@ DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionPa
       const double mean = 0.5 * (a + c), d = std::sqrt(0.25 * (a - c) * (a - c) + b * b);
       const double lambda = mean + d;
       if (lambda < p.min_strength) continue;
+      // Along a line the profile is flat: a dot of stippling (or a blot) curves both ways.
+      if (mean - d > kMaxAlongRatio * lambda) continue;
       double nx, ny;
       if (std::abs(b) > 1e-12)
         nx = b, ny = lambda - a;
@@ -167,6 +270,7 @@ DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionPa
     return best_other;
   };
   int chains = 0;
+  std::vector<std::vector<Vec2>> pieces;
   for (int s : order) {
     if (chain_of[size_t(s)] >= 0) continue;
     const int id = chains++;
@@ -202,9 +306,13 @@ DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionPa
     std::vector<Vec2> poly;
     poly.reserve(chain.size());
     for (int i : chain) poly.push_back(Vec2(pts[i].x, pts[i].y));
+    if (poly.size() >= 2) pieces.push_back(std::move(poly));
+  }
+  join_pieces(pieces, p);
+  for (auto& poly : pieces) {
     double len = 0;
     for (size_t i = 1; i < poly.size(); ++i) len += (poly[i] - poly[i - 1]).norm();
-    if (len < p.min_length || poly.size() < 2) {
+    if (len < p.min_length) {
       ++out.dropped_short;
       continue;
     }

@@ -29,6 +29,8 @@ struct FixedDirection {
 struct InterpretationParams {
   double margin = 3;  // px: how far beside a curve its two sides are sampled
   double gap_close = 8;  // px: curve ends are extended this far to close junction gaps
+  double min_region_area = 100;  // px^2: smaller regions (specks of stippling, hatching) take no part
+  bool paper_is_base = true;     // the regions touching the image border are the ground (level 0)
   std::vector<FixedDirection> fixed;
   void validate() const;
 };

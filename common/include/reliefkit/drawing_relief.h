@@ -26,7 +26,8 @@ struct DrawingReliefParams {
 struct DrawingRelief {
   std::vector<double> height;      // per base vertex, over the base
   std::vector<char> in_margin;     // per base vertex: on a step's profile (a boundary condition)
-  SolveReport relief_solve;
+  SolveReport laplacian_solve;  // eq. 7.4
+  SolveReport relief_solve;      // eq. 7.6
 };
 
 /// The relief on a flat base whose vertices lie in the drawing's plane (x, y in mesh units:

@@ -1,0 +1,34 @@
+// Synthetic line drawings rendered from known step reliefs, and the measure of a reconstruction
+// against them (tests and benchmarks of reliefkit/drawing_*.h).
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include "reliefkit/drawing_relief.h"
+
+namespace rktest {
+
+/// The nested test drawing at `scale` (1: 600 x 600 px), lines `line_px` wide: an object
+/// (rectangle) holding a raised disc, a raised ring with a raised disc inside it (two levels), and
+/// a raised rectangle cut in two by a line (touching curves and a junction of three curves).
+/// Known levels above the object: disc 1, ring 1, inner disc 2, the rectangle's halves 1 and 2.
+cv::Mat nested_drawing(double scale = 1, int line_px = 2);
+
+/// Points (image px) inside each known part of nested_drawing(scale): object, disc, ring, inner
+/// disc, left and right half of the rectangle.
+struct NestedParts {
+  cv::Point object, disc, ring, inner, left, right;
+};
+NestedParts nested_parts(double scale = 1);
+
+/// How well a relief on a drawing_grid matches the regions' levels on its free surface (outside
+/// the margins and the paper around the object): the best global scale (height per level) and the
+/// RMS error in steps after it.
+struct LevelFit {
+  double scale = 0, rms_steps = 0;
+  long samples = 0;
+};
+LevelFit fit_levels(const reliefkit::TriMesh& grid, double pixel_size, const reliefkit::DrawingRelief& relief,
+                    const reliefkit::DrawingInterpretation& interpretation, cv::Point paper);
+
+}  // namespace rktest
