@@ -61,7 +61,7 @@ void apply(FilterCall& call) {
   const int estimator = read_enum(call, "estimator", "Estimator", kEstimators.size());
   const Length presmoothing = read_presmoothing(call);
   const auto q = static_cast<Quantity>(read_enum(call, "quality", "Vertex quality", kQuantities.size()));
-  View view = view_of(call.mesh, call.log);
+  View view = view_of(call.mesh(), call.log);
   CurvatureOptions opt;
   opt.estimator = estimator == 1 ? CurvatureEstimator::FaceFit : CurvatureEstimator::Jet;
   auto t1 = std::chrono::steady_clock::now();
@@ -70,8 +70,8 @@ void apply(FilterCall& call) {
   const Curvature& c = sc.curvature;
   auto t2 = std::chrono::steady_clock::now();
 
-  CMeshO& cm = call.mesh.cm;
-  call.mesh.updateDataMask(MeshModel::MM_VERTCURVDIR | MeshModel::MM_VERTQUALITY);
+  CMeshO& cm = call.mesh().cm;
+  call.mesh().updateDataMask(MeshModel::MM_VERTCURVDIR | MeshModel::MM_VERTQUALITY);
   const int nv = view.mesh.n_vertices();
   using Alloc = vcg::tri::Allocator<CMeshO>;
   auto h_k1 = Alloc::GetPerVertexAttribute<Scalarm>(cm, "k1");

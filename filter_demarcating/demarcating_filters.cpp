@@ -104,18 +104,18 @@ void apply_demarcating(FilterCall& call) {
   const bool per_vertex = read_bool(call, "per_vertex", "Write per-vertex results");
   const bool quality = read_bool(call, "quality", "Vertex quality = curvature across");
   const double lift = read_lift(call);
-  View view = view_of(call.mesh, call.log);
+  View view = view_of(call.mesh(), call.log);
   DemarcatingResult r = compute_demarcating(view.mesh, p);
 
-  const QString label = derived_label(call.mesh, "demarcating curves");
+  const QString label = derived_label(call.mesh(), "demarcating curves");
   add_curve_layer(call.doc, label, r.curves, vcg::Color4b(0, 0, 0, 255), &r.curvature.normal, lift * r.scale.edge);
   if (per_vertex) {
-    write_vertex_attribute(call.mesh.cm, view, "demarcating_kappa", r.gradient.kappa);
-    write_vertex_attribute(call.mesh.cm, view, "demarcating_strength", r.gradient.strength);
-    write_vertex_vectors(call.mesh.cm, view, "demarcating_direction", r.gradient.direction);
+    write_vertex_attribute(call.mesh().cm, view, "demarcating_kappa", r.gradient.kappa);
+    write_vertex_attribute(call.mesh().cm, view, "demarcating_strength", r.gradient.strength);
+    write_vertex_vectors(call.mesh().cm, view, "demarcating_direction", r.gradient.direction);
   }
   if (quality) {
-    call.mesh.updateDataMask(MeshModel::MM_VERTQUALITY);
+    call.mesh().updateDataMask(MeshModel::MM_VERTQUALITY);
     for_each_vertex(view, [&](int i, CVertexO* v) { v->Q() = float(r.gradient.kappa[i]); });
   }
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -141,7 +141,7 @@ void apply_shading(FilterCall& call) {
   const double contrast = read_float(call, "contrast", "Contrast", 0, 1000);
   const bool darken = read_bool(call, "darken", "Darken along demarcating curves");
   const double darkness = read_float(call, "darkness", "Curve darkness", 0, 1);
-  View view = view_of(call.mesh, call.log);
+  View view = view_of(call.mesh(), call.log);
   std::vector<double> grey;
   long long segments = 0;
   if (darken) {
@@ -155,7 +155,7 @@ void apply_shading(FilterCall& call) {
     grey = mean_curvature_shading(sc.curvature, contrast);
     call.log(scale_summary(sc.scale, sc.noise, sc.presmoothing, p.presmoothing));
   }
-  write_grey(call.mesh, view, grey, grey);
+  write_grey(call.mesh(), view, grey, grey);
   call.log(QString("Curvature shading of %1 vertices (contrast %2)%3.")
                .arg(thousands(view.mesh.n_vertices()))
                .arg(contrast, 0, 'g', 3)

@@ -144,7 +144,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 
 void write_scale(FilterCall& call, const View& view, const OptimalScale& s) {
-  write_vertex_attribute(call.mesh.cm, view, "optimal_scale", s.sigma);
+  write_vertex_attribute(call.mesh().cm, view, "optimal_scale", s.sigma);
 }
 
 void optimal_parameters(MeshModel&, RichParameterList& par) {
@@ -159,14 +159,14 @@ void apply_optimal(FilterCall& call) {
   const ScaleRange range = read_scale_range(call);
   const bool relief = read_enum(call, "curve", "Curves the scale is for", 2) == 1;
   const bool quality = read_bool(call, "quality", "Vertex quality = scale");
-  View view = view_of(call.mesh, call.log);
+  View view = view_of(call.mesh(), call.log);
   OptimalScaleOptions o = resolve(call, range, mesh_scale(view.mesh));
   o.curve = relief ? ScaleStrength::ReliefEdges : ScaleStrength::RidgesValleys;
   const OptimalScale s = optimal_scale(view.mesh, o);
   write_scale(call, view, s);
-  write_vertex_attribute(call.mesh.cm, view, "optimal_scale_strength", s.strength);
+  write_vertex_attribute(call.mesh().cm, view, "optimal_scale_strength", s.strength);
   if (quality) {
-    call.mesh.updateDataMask(MeshModel::MM_VERTQUALITY);
+    call.mesh().updateDataMask(MeshModel::MM_VERTQUALITY);
     for_each_vertex(view, [&](int i, CVertexO* v) { v->Q() = float(s.sigma[i] / s.scale.edge); });
   }
   call.log(QString("Optimal scale of %1 vertices for %2, %3 scales from %4 to %5 edge lengths (edge length %6); %7 s.")
@@ -193,15 +193,15 @@ void apply_smoothed(FilterCall& call) {
   const ScaleRange range = read_scale_range(call);
   const bool relief = read_enum(call, "curve", "Curves the scale is for", 2) == 1;
   const Length fs = read_length(call, "final_smoothing", "Final smoothing", 0, 100);
-  View view = view_of(call.mesh, call.log);
+  View view = view_of(call.mesh(), call.log);
   const MeshScale ms = mesh_scale(view.mesh);
   OptimalScaleOptions o = resolve(call, range, ms);
   o.curve = relief ? ScaleStrength::ReliefEdges : ScaleStrength::RidgesValleys;
   o.final_smoothing_edges = fs.is_auto() ? kAutoFinalSmoothing : fs.kind == Length::Kind::Edges ? fs.value : fs.value / ms.edge;
   o.smoothed_surface = true;
   const OptimalScale s = optimal_scale(view.mesh, o);
-  const QString label = derived_label(call.mesh, "optimally smoothed");
-  add_surface_layer(call.doc, label, call.mesh, view, s.smoothed);
+  const QString label = derived_label(call.mesh(), "optimally smoothed");
+  add_surface_layer(call.doc, label, call.mesh(), view, s.smoothed);
   write_scale(call, view, s);
   call.log(QString("Optimally smoothed surface in layer \"%1\" (%2 vertices); %3 s.")
                .arg(label)
@@ -228,11 +228,11 @@ void apply_ridges(FilterCall& call) {
   const ScaleRange range = read_scale_range(call);
   const double lift = read_lift(call);
   p.progress = call.progress;
-  View view = view_of(call.mesh, call.log);
+  View view = view_of(call.mesh(), call.log);
   const OptimalScaleOptions o = resolve(call, range, mesh_scale(view.mesh));
   const MultiscaleRidgeValleys r = multiscale_ridges_valleys(view.mesh, o, p);
   const std::vector<Vec3> normals = vertex_normals(view.mesh, vertex_faces(view.mesh));
-  const QString lr = derived_label(call.mesh, "multi-scale ridges"), lv = derived_label(call.mesh, "multi-scale valleys");
+  const QString lr = derived_label(call.mesh(), "multi-scale ridges"), lv = derived_label(call.mesh(), "multi-scale valleys");
   const double h = r.scale.scale.edge;
   add_curve_layer(call.doc, lr, r.curves.ridges, vcg::Color4b(200, 30, 30, 255), &normals, lift * h);
   add_curve_layer(call.doc, lv, r.curves.valleys, vcg::Color4b(30, 30, 200, 255), &normals, lift * h);
@@ -276,13 +276,13 @@ void apply_relief(FilterCall& call) {
   const ScaleRange range = read_scale_range(call);
   const double lift = read_lift(call);
   p.progress = call.progress;
-  View view = view_of(call.mesh, call.log);
+  View view = view_of(call.mesh(), call.log);
   const OptimalScaleOptions o = resolve(call, range, mesh_scale(view.mesh));
   const MultiscaleReliefEdges r = multiscale_relief_edges(view.mesh, o, p);
   Polylines edges = r.curves.edges;
   for (auto& s : edges.strength) s /= kDeg;
   const std::vector<Vec3> normals = vertex_normals(view.mesh, vertex_faces(view.mesh));
-  const QString label = derived_label(call.mesh, "multi-scale relief edges");
+  const QString label = derived_label(call.mesh(), "multi-scale relief edges");
   add_curve_layer(call.doc, label, edges, vcg::Color4b(0, 0, 0, 255), &normals, lift * r.scale.scale.edge);
   write_scale(call, view, r.scale);
   call.log(QString("Multi-scale relief edges: %1 segments in %2 curves, layer \"%3\"; strong tilt %4 deg; %5 s.")

@@ -130,7 +130,7 @@ void apply_field(FilterCall& call) {
   const ProminentFieldParams p = read_field_parameters(call);
   const int quality = read_enum(call, "quality", "Vertex quality", kFieldQuality.size());
   const bool curvature_dir = read_bool(call, "curvature_dir", "Show in Show Curvature");
-  View view = view_of(call.mesh, call.log);
+  View view = view_of(call.mesh(), call.log);
   const ProminentFieldResult f = compute_prominent_field(view.mesh, p);
   const Curvature& c = f.curvature;
   const int nv = view.mesh.n_vertices();
@@ -141,12 +141,12 @@ void apply_field(FilterCall& call) {
     kp[v] = c.normal_curvature(v, f.field[v]);
     kq[v] = c.normal_curvature(v, across[v]);
   }
-  write_vertex_vectors(call.mesh.cm, view, "prominent_direction", f.field);
-  write_vertex_attribute(call.mesh.cm, view, "prominent_confidence", f.beta);
-  write_vertex_attribute(call.mesh.cm, view, "prominent_strength", f.strength);
-  write_vertex_attribute(call.mesh.cm, view, "prominent_curvature", kp);
+  write_vertex_vectors(call.mesh().cm, view, "prominent_direction", f.field);
+  write_vertex_attribute(call.mesh().cm, view, "prominent_confidence", f.beta);
+  write_vertex_attribute(call.mesh().cm, view, "prominent_strength", f.strength);
+  write_vertex_attribute(call.mesh().cm, view, "prominent_curvature", kp);
   if (curvature_dir) {
-    call.mesh.updateDataMask(MeshModel::MM_VERTCURVDIR);
+    call.mesh().updateDataMask(MeshModel::MM_VERTCURVDIR);
     for_each_vertex(view, [&](int i, CVertexO* v) {
       const Vec3& s = f.field[i];
       // Show Curvature draws PD1 green and PD2 red from the vertex: a line field is drawn as one
@@ -158,7 +158,7 @@ void apply_field(FilterCall& call) {
     });
   }
   if (quality != 3) {
-    call.mesh.updateDataMask(MeshModel::MM_VERTQUALITY);
+    call.mesh().updateDataMask(MeshModel::MM_VERTQUALITY);
     const std::vector<double>& q = quality == 0 ? kp : quality == 1 ? f.beta : f.strength;
     for_each_vertex(view, [&](int i, CVertexO* v) { v->Q() = Scalarm(q[i]); });
   }
@@ -200,10 +200,10 @@ void apply_enhance(FilterCall& call) {
   p.strength = read_float(call, "strength", "Enhancement strength", 0.01, 100);
   p.field = read_field_parameters(call);
   p.progress = call.progress;
-  View view = view_of(call.mesh, call.log);
+  View view = view_of(call.mesh(), call.log);
   const EnhanceResult r = enhance_relief(view.mesh, p);
-  const QString label = derived_label(call.mesh, "enhanced");
-  add_surface_layer(call.doc, label, call.mesh, view, r.positions, &r.height_change);
+  const QString label = derived_label(call.mesh(), "enhanced");
+  add_surface_layer(call.doc, label, call.mesh(), view, r.positions, &r.height_change);
   log_field(call, r.field, p.field);
   const double h = r.field.scale.edge;
   double largest = 0;
@@ -246,7 +246,7 @@ void apply_coloring(FilterCall& call) {
   const auto which = static_cast<ColoringCurvature>(read_enum(call, "curvature", "Colour by", kColoringCurvature.size()));
   const double contrast = read_float(call, "contrast", "Contrast (lambda)", 1e-6, 1e6);
   const ProminentFieldParams p = read_field_parameters(call);
-  View view = view_of(call.mesh, call.log);
+  View view = view_of(call.mesh(), call.log);
   ColoringResult col;
   if (which == ColoringCurvature::Prominent) {
     const ProminentFieldResult f = compute_prominent_field(view.mesh, p);
@@ -257,7 +257,7 @@ void apply_coloring(FilterCall& call) {
     col = curvature_coloring(sc.curvature, nullptr, sc.scale.counts, which, contrast);
     call.log(scale_summary(sc.scale, sc.noise, sc.presmoothing, p.presmoothing));
   }
-  write_grey(call.mesh, view, col.grey, col.curvature);
+  write_grey(call.mesh(), view, col.grey, col.curvature);
   call.log(QString("%1 coloring of %2 vertices: lambda %3 (contrast %4 x automatic); vertex quality = the curvature; "
                    "%5 s.")
                .arg(kColoringCurvature[int(which)].section(' ', 0, 0))

@@ -106,21 +106,21 @@ void apply_relief(FilterCall& call) {
   const bool quality = read_bool(call, "quality", "Vertex quality = curvature across the edge");
   const double lift = read_lift(call);
   p.progress = call.progress;
-  View view = view_of(call.mesh, call.log);
+  View view = view_of(call.mesh(), call.log);
   ReliefEdgeResult r = compute_relief_edges(view.mesh, p);
   Polylines edges = r.edges;
   for (auto& s : edges.strength) s /= kDeg;  // layer quality in degrees
-  const QString label = derived_label(call.mesh, "relief edges");
+  const QString label = derived_label(call.mesh(), "relief edges");
   add_curve_layer(call.doc, label, edges, vcg::Color4b(0, 0, 0, 255), &r.curvature.normal, lift * r.scale.edge);
   if (per_vertex) {
-    write_vertex_attribute(call.mesh.cm, view, "relief_G", r.G);
-    write_vertex_vectors(call.mesh.cm, view, "relief_direction", r.direction);
-    write_vertex_attribute(call.mesh.cm, view, "relief_alpha", r.alpha);
-    write_vertex_attribute(call.mesh.cm, view, "relief_fit_error", r.fit_error);
-    write_vertex_vectors(call.mesh.cm, view, "base_normal", r.base.normal);
+    write_vertex_attribute(call.mesh().cm, view, "relief_G", r.G);
+    write_vertex_vectors(call.mesh().cm, view, "relief_direction", r.direction);
+    write_vertex_attribute(call.mesh().cm, view, "relief_alpha", r.alpha);
+    write_vertex_attribute(call.mesh().cm, view, "relief_fit_error", r.fit_error);
+    write_vertex_vectors(call.mesh().cm, view, "base_normal", r.base.normal);
   }
   if (quality) {
-    call.mesh.updateDataMask(MeshModel::MM_VERTQUALITY);
+    call.mesh().updateDataMask(MeshModel::MM_VERTQUALITY);
     for_each_vertex(view, [&](int i, CVertexO* v) { v->Q() = float(r.G[i]); });
   }
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -164,7 +164,7 @@ void apply_base(FilterCall& call) {
   auto t0 = std::chrono::steady_clock::now();
   const Length scale = read_base_scale(call);
   const bool quality = read_bool(call, "quality", "Vertex quality = tilt against the base");
-  View view = view_of(call.mesh, call.log);
+  View view = view_of(call.mesh(), call.log);
   const MeshScale ms = mesh_scale(view.mesh);
   scale.check("Base surface scale", 0.5, 10000, ms.edge);
   BaseNormalOptions o;
@@ -173,9 +173,9 @@ void apply_base(FilterCall& call) {
   VertexFaces vf = vertex_faces(view.mesh);
   std::vector<Vec3> n = vertex_normals(view.mesh, vf);
   BaseNormals b = estimate_base_normals(view.mesh, n, o);
-  write_vertex_vectors(call.mesh.cm, view, "base_normal", b.normal);
+  write_vertex_vectors(call.mesh().cm, view, "base_normal", b.normal);
   if (quality) {
-    call.mesh.updateDataMask(MeshModel::MM_VERTQUALITY);
+    call.mesh().updateDataMask(MeshModel::MM_VERTQUALITY);
     for_each_vertex(view, [&](int i, CVertexO* v) {
       v->Q() = float(std::acos(std::clamp(n[i].dot(b.normal[i]), -1.0, 1.0)) / kDeg);
     });
@@ -208,9 +208,9 @@ void apply_ridges(FilterCall& call) {
   p.min_length_edges = read_float(call, "min_length", "Minimum curve length", 0, 1e6);
   const double lift = read_lift(call);
   p.progress = call.progress;
-  View view = view_of(call.mesh, call.log);
+  View view = view_of(call.mesh(), call.log);
   RidgeValleyResult r = compute_ridges_valleys(view.mesh, p);
-  const QString lr = derived_label(call.mesh, "ridges"), lv = derived_label(call.mesh, "valleys");
+  const QString lr = derived_label(call.mesh(), "ridges"), lv = derived_label(call.mesh(), "valleys");
   add_curve_layer(call.doc, lr, r.ridges, vcg::Color4b(200, 30, 30, 255), &r.curvature.normal, lift * r.scale.edge);
   add_curve_layer(call.doc, lv, r.valleys, vcg::Color4b(30, 30, 200, 255), &r.curvature.normal, lift * r.scale.edge);
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

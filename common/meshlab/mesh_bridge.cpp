@@ -60,6 +60,31 @@ MeshModel* add_curve_layer(MeshDocument& doc, const QString& label, const Polyli
   return layer;
 }
 
+MeshModel* add_mesh_layer(MeshDocument& doc, const QString& label, const TriMesh& mesh, const std::vector<double>& quality,
+                          const std::vector<std::pair<const char*, const std::vector<double>*>>& attributes, bool current) {
+  MeshModel* layer = doc.addNewMesh("", label, current);
+  CMeshO& cm = layer->cm;
+  layer->updateDataMask(MeshModel::MM_VERTQUALITY);
+  if (mesh.n_vertices() > 0) {
+    auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(cm, size_t(mesh.n_vertices()));
+    for (int v = 0; v < mesh.n_vertices(); ++v, ++vi) {
+      const Vec3& p = mesh.vertices[v];
+      vi->P() = Point3m(Scalarm(p.x()), Scalarm(p.y()), Scalarm(p.z()));
+      vi->Q() = Scalarm(v < int(quality.size()) ? quality[size_t(v)] : 0);
+    }
+    auto fi = vcg::tri::Allocator<CMeshO>::AddFaces(cm, mesh.faces.size());
+    for (size_t f = 0; f < mesh.faces.size(); ++f, ++fi)
+      for (int k = 0; k < 3; ++k) fi->V(k) = &cm.vert[size_t(mesh.faces[f][size_t(k)])];
+    for (const auto& [name, values] : attributes) {
+      auto h = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<float>(cm, name);
+      for (size_t v = 0; v < cm.vert.size(); ++v) h[v] = v < values->size() ? float((*values)[v]) : 0.f;
+    }
+  }
+  vcg::tri::UpdateBounding<CMeshO>::Box(cm);
+  vcg::tri::UpdateNormal<CMeshO>::PerVertexNormalizedPerFaceNormalized(cm);
+  return layer;
+}
+
 MeshModel* add_surface_layer(MeshDocument& doc, const QString& label, MeshModel& source, const View& view,
                              const std::vector<Vec3>& positions, const std::vector<double>* quality) {
   MeshModel* layer = doc.addNewMesh("", label, false);

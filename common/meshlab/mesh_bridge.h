@@ -40,6 +40,11 @@ MeshModel* add_curve_layer(MeshDocument& doc, const QString& label, const Polyli
 MeshModel* add_surface_layer(MeshDocument& doc, const QString& label, MeshModel& source, const View& view,
                              const std::vector<Vec3>& positions, const std::vector<double>* quality = nullptr);
 
+/// Adds a new layer holding `mesh` (normals computed), vertex quality = `quality` (per vertex) and
+/// the named per-vertex float attributes. `current`: the new layer becomes the current one.
+MeshModel* add_mesh_layer(MeshDocument& doc, const QString& label, const TriMesh& mesh, const std::vector<double>& quality,
+                          const std::vector<std::pair<const char*, const std::vector<double>*>>& attributes, bool current);
+
 /// "<mesh name> – <what>": the label of a layer derived from `m` (file extension dropped).
 QString derived_label(const MeshModel& m, const QString& what);
 

@@ -49,9 +49,9 @@ bool ReliefKitPlugin::applyFilter(QAction* a, MeshDocument& md, const RichParame
     Log(GLLogStream::SYSTEM, qUtf8Printable(log_text(s.name + " failed: " + msg)));
     return false;
   };
-  if (md.mm() == nullptr) return fail("there is no mesh layer to work on; open a mesh first.");
+  if (md.mm() == nullptr && s.needs_mesh) return fail("there is no mesh layer to work on; open a mesh first.");
   try {
-    FilterCall call{md, *md.mm(), par, cb, [this](const QString& line) { Log(qUtf8Printable(log_text(line))); }};
+    FilterCall call{md, md.mm(), par, cb, [this](const QString& line) { Log(qUtf8Printable(log_text(line))); }};
     s.apply(call);
     return true;
   } catch (const reliefkit::InputError& e) {

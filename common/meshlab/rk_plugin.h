@@ -18,7 +18,8 @@ namespace reliefkit::ml {
 /// std::exception); the adapter turns them into MeshLab's error message and a log line.
 struct FilterCall {
   MeshDocument& doc;
-  MeshModel& mesh;  // the current layer
+  MeshModel* current;  // the current layer; null only for a filter that needs none (needs_mesh false)
+  MeshModel& mesh() const { return *current; }
   const RichParameterList& params;
   vcg::CallBackPos* progress;
   std::function<void(const QString&)> log;
@@ -36,6 +37,9 @@ struct FilterSpec {
   /// The filter adds layers (curves, a smoothed copy). MeshLab 2020.09 cannot take back the
   /// layers a Preview adds, so such filters are not previewable.
   bool adds_layers = false;
+  /// False for a filter that makes its layers from other input (a drawing): it runs in an empty
+  /// document too (MeshLab's Create menu), with `current` null.
+  bool needs_mesh = true;
 };
 
 /// A log line as MeshLab's log window shows it unchanged (no character read as markup).

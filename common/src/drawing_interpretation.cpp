@@ -6,6 +6,7 @@
 #include <deque>
 #include <map>
 #include <queue>
+#include <numeric>
 #include <set>
 
 #include "reliefkit/scale.h"
@@ -39,11 +40,23 @@ int majority(const std::map<int, int>& votes) {
 DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const InterpretationParams& p) {
   p.validate();
   const int nc = static_cast<int>(dc.curves.size());
-  for (const auto& f : p.fixed)
+  DrawingInterpretation out;
+  out.profile.assign(size_t(nc), CurveProfile::Step);
+  out.weight.assign(size_t(nc), 0);
+  std::vector<CurveOverride::Direction> direction(size_t(nc), CurveOverride::Direction::Auto);
+  std::vector<char> seen(size_t(nc), 0);
+  for (const auto& f : p.overrides) {
     if (f.curve < 0 || f.curve >= nc)
       throw InputError("The interpretation names curve " + std::to_string(f.curve) + ", but the drawing has curves 0 to " +
                        std::to_string(nc - 1) + ".");
-  DrawingInterpretation out;
+    if (seen[size_t(f.curve)]++) throw InputError("The interpretation names curve " + std::to_string(f.curve) + " twice.");
+    if (f.weight < 0 || f.weight > 1000)
+      throw InputError("The interpretation gives curve " + std::to_string(f.curve) + " the weight " + std::to_string(f.weight) +
+                       "; weights are whole numbers from 0 (automatic) to 1000.");
+    out.profile[size_t(f.curve)] = f.profile;
+    out.weight[size_t(f.curve)] = f.weight;
+    direction[size_t(f.curve)] = f.direction;
+  }
   if (dc.width <= 0 || dc.height <= 0) return out;
   // Regions: the image minus the curves (drawn 2 px wide), 4-connected.
   cv::Mat ink(dc.height, dc.width, CV_8U, cv::Scalar(0));
@@ -105,24 +118,40 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
     out.sides[size_t(k)] = {majority(left), majority(right)};
   }
 
-  // The graph: regions, curves between two different regions (neither of them a speck).
-  std::vector<std::set<int>> adj(static_cast<size_t>(nr));
-  std::vector<std::vector<int>> lower_than(static_cast<size_t>(nr));  // fixed: region -> regions that must be above it
+  // Ridges and valleys leave both their sides at one height: their sides are one node.
+  std::vector<int> node(static_cast<size_t>(nr));
+  std::iota(node.begin(), node.end(), 0);
+  auto find = [&](int r) {
+    while (node[size_t(r)] != r) r = node[size_t(r)] = node[size_t(node[size_t(r)])];
+    return r;
+  };
+  auto usable = [&](int k) {
+    const auto [a, b] = out.sides[size_t(k)];
+    return a >= 0 && b >= 0 && a != b && !small[size_t(a)] && !small[size_t(b)];
+  };
+  for (int k = 0; k < nc; ++k)
+    if (out.profile[size_t(k)] != CurveProfile::Step && usable(k)) node[size_t(find(out.sides[size_t(k)][0]))] = find(out.sides[size_t(k)][1]);
+  // The graph: nodes, steps between two different nodes (neither of them a speck), each step at
+  // least its weight.
+  std::vector<std::map<int, int>> adj(static_cast<size_t>(nr));  // node -> (node -> least step)
+  std::vector<std::vector<int>> lower_than(static_cast<size_t>(nr));  // fixed: node -> nodes that must be above it
   std::vector<int> fixed_in(size_t(nr), 0);
   for (int k = 0; k < nc; ++k) {
-    const auto [a, b] = out.sides[size_t(k)];
-    if (a < 0 || b < 0 || a == b || small[size_t(a)] || small[size_t(b)]) {
-      ++out.ignored_curves;
+    if (!usable(k) || out.profile[size_t(k)] != CurveProfile::Step || find(out.sides[size_t(k)][0]) == find(out.sides[size_t(k)][1])) {
+      if (!usable(k)) ++out.ignored_curves;
       continue;
     }
-    adj[size_t(a)].insert(b), adj[size_t(b)].insert(a);
-  }
-  for (const auto& f : p.fixed) {
-    const auto [a, b] = out.sides[size_t(f.curve)];
-    if (a < 0 || b < 0 || a == b || small[size_t(a)] || small[size_t(b)]) continue;
-    const int lo = f.left_lower ? a : b, hi = f.left_lower ? b : a;
-    lower_than[size_t(lo)].push_back(hi);
-    ++fixed_in[size_t(hi)];
+    const int a = find(out.sides[size_t(k)][0]), b = find(out.sides[size_t(k)][1]), w = std::max(1, out.weight[size_t(k)]);
+    int& ab = adj[size_t(a)][b];
+    ab = std::max(ab, w);
+    int& ba = adj[size_t(b)][a];
+    ba = std::max(ba, w);
+    if (direction[size_t(k)] != CurveOverride::Direction::Auto) {
+      const bool left_lower = direction[size_t(k)] == CurveOverride::Direction::LeftLower;
+      const int lo = left_lower ? a : b, hi = left_lower ? b : a;
+      lower_than[size_t(lo)].push_back(hi);
+      ++fixed_in[size_t(hi)];
+    }
   }
   // Base: among the regions no fixed direction puts above another, the one bordering most curves.
   std::vector<int> dist(size_t(nr), -1);
@@ -135,7 +164,7 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
     while (!q.empty()) {
       const int u = q.front();
       q.pop_front();
-      for (int v : adj[size_t(u)])
+      for (const auto& [v, w] : adj[size_t(u)])
         if (dist[size_t(v)] < 0) dist[size_t(v)] = dist[size_t(u)] + 1, q.push_back(v);
     }
   };
@@ -174,16 +203,17 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
   if (int(order.size()) < nr)
     throw InputError("The fixed step directions contradict each other: following them leads round a loop back to "
                      "a region below itself. Check the directions given in the interpretation file.");
-  // Levels: the longest chain of steps below each region, every curve stepping up the order.
-  out.region_height.assign(size_t(nr), 0);
+  // Levels: the longest chain of steps below each node, every step going up the order.
+  std::vector<int> level(size_t(nr), 0);
   for (int u : order)
-    for (int v : adj[size_t(u)])
-      if (rank[size_t(v)] > rank[size_t(u)])
-        out.region_height[size_t(v)] = std::max(out.region_height[size_t(v)], out.region_height[size_t(u)] + 1);
+    for (const auto& [v, w] : adj[size_t(u)])
+      if (rank[size_t(v)] > rank[size_t(u)]) level[size_t(v)] = std::max(level[size_t(v)], level[size_t(u)] + w);
+  out.region_height.assign(size_t(nr), 0);
+  for (int r = 0; r < nr; ++r) out.region_height[size_t(r)] = level[size_t(find(r))];
   out.step.assign(size_t(nc), 0);
   for (int k = 0; k < nc; ++k) {
     const auto [a, b] = out.sides[size_t(k)];
-    if (a >= 0 && b >= 0 && a != b && !small[size_t(a)] && !small[size_t(b)]) out.step[size_t(k)] = out.region_height[size_t(b)] - out.region_height[size_t(a)];
+    if (usable(k)) out.step[size_t(k)] = out.region_height[size_t(b)] - out.region_height[size_t(a)];
   }
   return out;
 }

@@ -17,7 +17,7 @@ void DrawingReliefParams::validate() const {
   require_range(pixel_size, "Pixel size", 1e-12, 1e12);
 }
 
-TriMesh drawing_grid(int width, int height, double cell, double pixel_size) {
+TriMesh drawing_grid(int width, int height, double cell, double pixel_size, int x0, int y0) {
   if (width < 2 || height < 2) throw InputError("The drawing is too small for a relief (at least 2 x 2 pixels).");
   require_range(cell, "Grid cell (px)", 0.1, 1e6);
   const int nx = std::max(2, int(std::ceil((width - 1) / cell)) + 1), ny = std::max(2, int(std::ceil((height - 1) / cell)) + 1);
@@ -25,9 +25,10 @@ TriMesh drawing_grid(int width, int height, double cell, double pixel_size) {
   m.vertices.reserve(size_t(nx) * ny);
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
-      const double px = std::min(i * cell, double(width - 1)), py = std::min(j * cell, double(height - 1));
+      const double px = x0 + std::min(i * cell, double(width - 1)), py = y0 + std::min(j * cell, double(height - 1));
       m.vertices.push_back(Vec3(px * pixel_size, -py * pixel_size, 0));
     }
+  m.faces.reserve(size_t(nx - 1) * (ny - 1) * 2);
   for (int j = 0; j + 1 < ny; ++j)
     for (int i = 0; i + 1 < nx; ++i) {
       const int a = j * nx + i, b = a + 1, c = a + nx, d = c + 1;
@@ -35,6 +36,32 @@ TriMesh drawing_grid(int width, int height, double cell, double pixel_size) {
       m.faces.push_back({a, d, b});
       m.faces.push_back({a, c, d});
     }
+  return m;
+}
+
+cv::Rect drawing_extent(const DrawingCurves& dc, double pad) {
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (const auto& c : dc.curves)
+    for (const auto& q : c) x0 = std::min(x0, q.x()), y0 = std::min(y0, q.y()), x1 = std::max(x1, q.x()), y1 = std::max(y1, q.y());
+  if (x0 > x1) return cv::Rect(0, 0, dc.width, dc.height);
+  const int a = std::max(0, int(std::floor(x0 - pad))), b = std::max(0, int(std::floor(y0 - pad)));
+  const int c = std::min(dc.width - 1, int(std::ceil(x1 + pad))), d = std::min(dc.height - 1, int(std::ceil(y1 + pad)));
+  return cv::Rect(a, b, std::max(2, c - a + 1), std::max(2, d - b + 1));
+}
+
+TriMesh relief_surface(const TriMesh& grid, const std::vector<double>& height, DrawingBase base, double circumference) {
+  TriMesh m = grid;
+  if (base == DrawingBase::Plane) {
+    for (int v = 0; v < m.n_vertices(); ++v) m.vertices[v].z() = height[size_t(v)];
+    return m;
+  }
+  require_range(circumference, "Cylinder circumference", 1e-12, 1e12);
+  const double R = circumference / (2 * 3.14159265358979323846);
+  for (int v = 0; v < m.n_vertices(); ++v) {
+    const Vec3 g = grid.vertices[v];
+    const double a = g.x() / R, r = R + height[size_t(v)];
+    m.vertices[v] = Vec3(r * std::sin(a), g.y(), r * std::cos(a));  // outward normal (sin a, 0, cos a): faces stay outward
+  }
   return m;
 }
 
@@ -136,12 +163,21 @@ DrawingRelief reconstruct_drawing_relief(const TriMesh& base, const DrawingCurve
     if (k < 0) continue;
     const cv::Point q = pixel_of_label[l];
     const int own = di.regions.at<int>(y, x);
+    if (di.profile.size() == dc.curves.size() && di.profile[size_t(k)] != CurveProfile::Step) {
+      // A ridge or valley: a bump of its weight in levels over the one height of both its sides.
+      const int side = own >= 0 ? own : std::max(di.sides[size_t(k)][0], di.sides[size_t(k)][1]);
+      if (side < 0) continue;
+      const double amp = std::max(1, di.weight[size_t(k)]) * p.step_height * (di.profile[size_t(k)] == CurveProfile::Ridge ? 1 : -1);
+      r[size_t(v)] = di.region_height[size_t(side)] * p.step_height + amp * (1 - step_profile(2 * std::min(1.0, d / p.margin) - 1));
+      out.in_margin[size_t(v)] = 1;
+      continue;
+    }
     double ux = x - q.x, uy = y - q.y;
     const double un = std::hypot(ux, uy);
     int across = -1, here = own;
     if (un > 0) {
       ux /= un, uy /= un;
-      for (double step = std::max(d, 2.0); step <= 2 * p.margin + 3 && across < 0; step += 1)
+      for (double step = 2.0; step <= 2 * p.margin + 3 && across < 0; step += 1)
         across = region_at_px(q.x - ux * step, q.y - uy * step);
       if (here < 0)
         for (double step = 2.0; step <= 2 * p.margin + 3 && here < 0; step += 1) here = region_at_px(q.x + ux * step, q.y + uy * step);
@@ -159,6 +195,14 @@ DrawingRelief reconstruct_drawing_relief(const TriMesh& base, const DrawingCurve
   // Delta R = L elsewhere. Because each margin is held flat beyond its profile (kFlatBand), L fades
   // to zero at the margins' outer edges and the free surface between curves follows the levels.
   const MeshTopology topo = mesh_topology(base);
+  // The base's border holds its region's level (with the paper as ground: 0) where no margin
+  // reaches it; left free, the border took whatever the interpolated Laplacian made of it (on a
+  // real drawing: 14 steps below the paper at a corner of the grid).
+  for (int v = 0; v < nv; ++v)
+    if (!out.in_margin[size_t(v)] && topo.border.offset[size_t(v) + 1] > topo.border.offset[size_t(v)]) {
+      r[size_t(v)] = level_of(v);
+      out.in_margin[size_t(v)] = 1;
+    }
   const LaplacianResult lap = cotangent_laplacian(base, topo);
   const Eigen::SparseMatrix<double> K = -lap.L;  // positive semi-definite stiffness
   Eigen::VectorXd rv(nv);
@@ -185,6 +229,7 @@ DrawingRelief reconstruct_drawing_relief(const TriMesh& base, const DrawingCurve
   Eigen::VectorXd Lap = Lc;
   for (int v = 0; v < nv; ++v)
     if (free1[size_t(v)] >= 0) Lap[v] = Lf[free1[size_t(v)]];
+  out.laplacian.assign(Lap.data(), Lap.data() + nv);
   // Step 2 (eq. 7.6): R = r in the margins; Delta R = L, i.e. K R = -M L, elsewhere.
   std::vector<int> free2(size_t(nv), -1);
   int nfree2 = 0;

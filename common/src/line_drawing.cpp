@@ -1,6 +1,9 @@
 #include "reliefkit/line_drawing.h"
 
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include <fstream>
 
 #include <algorithm>
 #include <cmath>
@@ -25,6 +28,29 @@ double DrawingCurves::total_length() const {
   for (const auto& c : curves)
     for (size_t i = 1; i < c.size(); ++i) len += (c[i] - c[i - 1]).norm();
   return len;
+}
+
+cv::Mat read_drawing_image(const std::string& path, double* reduction) {
+  if (reduction) *reduction = 1;
+  if (path.empty()) throw InputError("No drawing image was given.");
+  if (!std::ifstream(path).good()) throw InputError("The drawing image \"" + path + "\" does not exist or cannot be read.");
+  cv::Mat img;
+  try {
+    img = cv::imread(path, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    throw InputError("The drawing image \"" + path + "\" could not be decoded: " + e.what());
+  }
+  if (img.empty())
+    throw InputError("The drawing image \"" + path + "\" is not an image OpenCV can read (PNG, JPEG, TIFF, BMP...), or it is empty.");
+  const double px = double(img.rows) * img.cols;
+  if (px > kMaxDrawingPixels) {
+    const double f = std::sqrt(kMaxDrawingPixels / px);
+    cv::Mat small;
+    cv::resize(img, small, cv::Size(std::max(1, int(img.cols * f)), std::max(1, int(img.rows * f))), 0, 0, cv::INTER_AREA);
+    img = small;
+    if (reduction) *reduction = f;
+  }
+  return img;
 }
 
 cv::Mat drawing_grey(const cv::Mat& image) {

@@ -45,15 +45,15 @@ TEST(DrawingInterpretation, FixedDirectionsAreKeptAndContradictionsRefused) {
   ASSERT_GE(k, 0);
   InterpretationParams p;
   const bool inner_on_left = d.sides[size_t(k)][0] == inner;
-  p.fixed.push_back({k, inner_on_left});  // the inner disc lower than the ring: sunken
+  p.overrides.push_back({k, inner_on_left ? CurveOverride::Direction::LeftLower : CurveOverride::Direction::RightLower});  // the inner disc lower than the ring: sunken
   const DrawingInterpretation f = interpret_drawing(c, p);
   const int ring = f.regions.at<int>(100, 420);
   EXPECT_LT(f.region_height[inner], f.region_height[ring]);
-  // A contradiction: the same curve fixed both ways.
-  p.fixed.push_back({k, !inner_on_left});
+  // The same curve named twice is refused.
+  p.overrides.push_back({k, CurveOverride::Direction::LeftLower});
   EXPECT_THROW(interpret_drawing(c, p), InputError);
   InterpretationParams bad;
-  bad.fixed.push_back({int(c.curves.size()) + 5, true});
+  bad.overrides.push_back({int(c.curves.size()) + 5, CurveOverride::Direction::LeftLower});
   EXPECT_THROW(interpret_drawing(c, bad), InputError);
 }
 

@@ -19,11 +19,18 @@
 
 namespace reliefkit {
 
-/// A user's fixed direction: curve `curve` rises from its left side (seen along the curve, in
-/// image coordinates, x right and y down) to its right side when `left_lower`, else the other way.
-struct FixedDirection {
+/// A curve's cross-section (thesis fig. 7.12, sect. 7.7): a step between its two sides, or a thin
+/// ridge or valley that leaves both sides at one height and acts only within its margin.
+enum class CurveProfile { Step, Ridge, Valley };
+
+/// What the user says about one curve (the thesis' fine-tuning, Constraints 3 and 4). Direction:
+/// seen along the curve in image coordinates (x right, y down), which side is lower.
+struct CurveOverride {
+  enum class Direction { Auto, LeftLower, RightLower };
   int curve = -1;
-  bool left_lower = true;
+  Direction direction = Direction::Auto;
+  int weight = 0;  // a step: at least this many levels (0: automatic, 1); a ridge / valley: its height in levels
+  CurveProfile profile = CurveProfile::Step;
 };
 
 struct InterpretationParams {
@@ -31,7 +38,7 @@ struct InterpretationParams {
   double gap_close = 8;  // px: curve ends are extended this far to close junction gaps
   double min_region_area = 100;  // px^2: smaller regions (specks of stippling, hatching) take no part
   bool paper_is_base = true;     // the regions touching the image border are the ground (level 0)
-  std::vector<FixedDirection> fixed;
+  std::vector<CurveOverride> overrides;
   void validate() const;
 };
 
@@ -42,11 +49,13 @@ struct DrawingInterpretation {
   std::vector<int> region_height;     // topological level of each region (0: the base)
   std::vector<int> step;              // per curve: height(right) - height(left), 0 when not a step
   std::vector<int> base_regions;      // the regions the base heuristic chose (or level 0)
+  std::vector<CurveProfile> profile;  // per curve
+  std::vector<int> weight;            // per curve: the override's weight (0 automatic)
   int ignored_curves = 0;             // curves with the same region (or none) on both sides
 };
 
-/// Regions, sides and levels of the curves of a drawing of `width` x `height` pixels. Throws
-/// InputError when the fixed directions contradict each other (a cycle) or name unknown curves.
+/// Regions, sides and levels of the curves of a drawing. Throws InputError when the overrides'
+/// directions contradict each other (a cycle), or name unknown curves or the same curve twice.
 DrawingInterpretation interpret_drawing(const DrawingCurves& curves, const InterpretationParams& params = {});
 
 }  // namespace reliefkit

@@ -26,6 +26,7 @@ struct DrawingReliefParams {
 struct DrawingRelief {
   std::vector<double> height;      // per base vertex, over the base
   std::vector<char> in_margin;     // per base vertex: on a step's profile (a boundary condition)
+  std::vector<double> laplacian;   // per base vertex: L of eq. 7.4
   SolveReport laplacian_solve;  // eq. 7.4
   SolveReport relief_solve;      // eq. 7.6
 };
@@ -35,7 +36,18 @@ struct DrawingRelief {
 DrawingRelief reconstruct_drawing_relief(const TriMesh& base, const DrawingCurves& curves,
                                          const DrawingInterpretation& interpretation, const DrawingReliefParams& params);
 
-/// A regular grid over the drawing (one vertex every `cell` px), z = 0: the flat base.
-TriMesh drawing_grid(int width, int height, double cell, double pixel_size);
+/// A regular grid over pixels [x0, x0 + width - 1] x [y0, y0 + height - 1] of the drawing (one vertex
+/// every `cell` px), z = 0: the flat base.
+TriMesh drawing_grid(int width, int height, double cell, double pixel_size, int x0 = 0, int y0 = 0);
+
+/// The part of the drawing worth a relief: the curves' bounding box grown by `pad` px, within the image.
+cv::Rect drawing_extent(const DrawingCurves& curves, double pad);
+
+enum class DrawingBase { Plane, Cylinder };
+
+/// The relief as a surface: the flat grid's vertices raised by `height` along +z (Plane), or the
+/// grid rolled round a vertical cylinder whose circumference is the drawing's width (`circumference`,
+/// mesh units; image x runs round it) and raised along the outward normal (Cylinder).
+TriMesh relief_surface(const TriMesh& grid, const std::vector<double>& height, DrawingBase base, double circumference);
 
 }  // namespace reliefkit

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <opencv2/core.hpp>
+#include <string>
 #include <vector>
 
 #include "reliefkit/mesh.h"
@@ -46,5 +47,13 @@ struct DrawingCurves {
 cv::Mat drawing_grey(const cv::Mat& image);
 
 DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionParams& params = {});
+
+/// Largest drawing read at full size (pixels); a larger one is reduced to it (INTER_AREA).
+constexpr double kMaxDrawingPixels = 60e6;
+
+/// Reads a drawing (PNG, JPEG, TIFF, BMP, ... : what OpenCV reads) keeping its alpha channel.
+/// Throws InputError naming the file when it is missing, unreadable or empty. A drawing larger than
+/// kMaxDrawingPixels is reduced; `reduction` (if given) receives the factor (1: read as it is).
+cv::Mat read_drawing_image(const std::string& path, double* reduction = nullptr);
 
 }  // namespace reliefkit

@@ -1,0 +1,319 @@
+#include "drawing_filters.h"
+
+#include <QDir>
+#include <QFile>
+#include <QFileInfo>
+#include <chrono>
+#include <cmath>
+
+#include "mesh_bridge.h"
+#include "params.h"
+#include "reliefkit/drawing_file.h"
+#include "reliefkit/drawing_relief.h"
+
+namespace reliefkit::ml {
+namespace {
+
+const char* kCitation =
+    "M. Kolomenkin, G. Leifman, I. Shimshoni, A. Tal, <b>\"Reconstruction of relief objects from line "
+    "drawings\"</b>, CVPR 2011; thesis chapter 7. Line detection: C. Steger, PAMI 1998.";
+
+const char* kCurvesInfo =
+    "Finds the <b>lines of a scanned drawing</b> (an excavation report's figure of a lamp, a seal, a stone tool) "
+    "and adds them as a new layer of curves, so that the extraction can be inspected before a relief is built "
+    "from it.<br><br>"
+    "<b>Input</b>: an image file (PNG, JPEG, TIFF...; grey, colour or with a transparent background) of dark "
+    "lines on light paper. <b>Output</b>: a new layer <i>&lt;image&gt; – curves</i>: the curves as edges in the "
+    "plane z = 0, image x to the right and y up, one pixel = 25.4 / DPI &times; scale millimetres; vertex "
+    "quality = the curve's id, as the interpretation file of <i>Relief from Line Drawing</i> names it.<br><br>"
+    "Method: the image is smoothed (Gaussian, <i>Line scale</i>); a pixel is on a line where the second "
+    "derivative across the line is strong, the first vanishes (the line's centre, to a sub-pixel) and the "
+    "image is dark; points are linked along the lines, pieces that face each other across a junction or a "
+    "corner are joined, strokes shorter than <i>Shortest stroke</i> (stippling, hatching, shading) are "
+    "dropped. ";
+
+const char* kReliefInfo =
+    "Builds a <b>3-D relief from a line drawing</b>: which side of each line is higher is decided "
+    "automatically (the paper around the object is the ground, and shapes drawn inside others rise from them, "
+    "one step per line), then a smooth surface is made that steps up or down across every line and is smooth "
+    "between them.<br><br>"
+    "<b>Output</b>: a new layer <i>&lt;image&gt; – relief</i> (made current) on a generated base — a plane, or a "
+    "cylinder whose circumference is the drawing's width (a roll-out drawing of a cup or a lamp) — with vertex "
+    "quality = the height over the base and the per-vertex attribute <code>drawing_level</code> (the level "
+    "each part was given); a layer <i>&lt;image&gt; – curves</i> with the lines on the relief; and, beside the "
+    "image, the <b>interpretation file</b> <i>&lt;image&gt;.interpretation.json</i>: every curve with its id, ends, "
+    "sides and step. To change the result, edit a curve's <code>direction</code> (auto, left-lower, "
+    "right-lower), <code>weight</code> (levels of its step, or a ridge's height) or <code>profile</code> (step, "
+    "ridge, valley) in a copy of that file and give it as <i>Interpretation file</i>.<br><br>"
+    "Method: thesis sect. 7.3 (the regions between the lines form a graph; it is directed from the ground "
+    "up and levelled by topological order) and 7.4 (a smoothed step of width <i>Step width</i> across each "
+    "line; the Laplacian of the relief is interpolated smoothly between the lines, eq. 7.4, then the relief, "
+    "eq. 7.6). ";
+
+const QStringList kImageExts = {"*.png", "*.jpg", "*.jpeg", "*.tif", "*.tiff", "*.bmp"};
+const QStringList kBases = {"Plane", "Cylinder (the drawing's width goes round it)"};
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// ---- Shared: the drawing and its curves ----
+
+void drawing_parameters(RichParameterList& par) {
+  par.addParam(RichOpenFile("drawing", "", kImageExts, "Drawing image",
+                            "The scanned line drawing: dark lines on light paper (PNG, JPEG, TIFF, BMP; grey, colour "
+                            "or RGBA with a transparent background)."));
+  par.addParam(RichFloat("sigma", 2.f, "Line scale (px)",
+                         "Standard deviation of the Gaussian that smooths the image before lines are found (thesis: "
+                         "2 px). About the lines' half-width: 2 suits drawings scanned at 300 dpi; take 1 for thin "
+                         "lines in small images, more for thick pen lines."));
+  par.addParam(RichFloat("min_length", 12.f, "Shortest stroke (px)",
+                         "Strokes shorter than this are taken for shading (stippling, hatching) and dropped."));
+  par.addParam(RichFloat("dpi", 300.f, "Drawing resolution (DPI)",
+                         "Dots per inch of the scan: with the scale it sets the size of a pixel on the object, "
+                         "25.4 / DPI x scale millimetres."));
+  par.addParam(RichFloat("scale", 1.f, "Drawing scale (object : drawing)",
+                         "How many times larger the object is than its drawing (2 for a figure drawn at 1:2)."));
+}
+
+struct Drawing {
+  QString path;
+  cv::Mat image;
+  LineDetectionParams detection;
+  DrawingCurves curves;
+  double pixel_mm = 1;  // mesh units (mm) per pixel of the image as read
+};
+
+Drawing read_drawing(FilterCall& call) {
+  Drawing d;
+  d.path = call.params.getOpenFileName("drawing");
+  d.detection.sigma = read_float(call, "sigma", "Line scale (px)", 0.5, 50);
+  d.detection.min_length = read_float(call, "min_length", "Shortest stroke (px)", 0, 1e6);
+  const double dpi = read_float(call, "dpi", "Drawing resolution (DPI)", 1, 100000);
+  const double scale = read_float(call, "scale", "Drawing scale (object : drawing)", 1e-6, 1e6);
+  if (d.path.trimmed().isEmpty()) throw InputError("No drawing image was given: choose the image file in \"Drawing image\".");
+  double reduction = 1;
+  if (call.progress) call.progress(2, "Reading the drawing");
+  d.image = read_drawing_image(d.path.toStdString(), &reduction);
+  d.pixel_mm = 25.4 / dpi * scale / reduction;
+  if (reduction < 1)
+    call.log(QString("The drawing has more than %1 million pixels: read reduced by %2 (pixel size %3 mm).")
+                 .arg(kMaxDrawingPixels / 1e6, 0, 'f', 0)
+                 .arg(reduction, 0, 'f', 3)
+                 .arg(d.pixel_mm, 0, 'g', 4));
+  if (call.progress) call.progress(10, "Finding the lines");
+  d.curves = extract_drawing_curves(d.image, d.detection);
+  if (d.curves.curves.empty())
+    throw InputError(QString("No lines were found in \"%1\" (%2 x %3 px): the image is blank, or its lines are lighter or "
+                             "shorter than the line detection takes (Line scale %4 px, Shortest stroke %5 px).")
+                         .arg(QFileInfo(d.path).fileName())
+                         .arg(d.image.cols)
+                         .arg(d.image.rows)
+                         .arg(d.detection.sigma)
+                         .arg(d.detection.min_length)
+                         .toStdString());
+  return d;
+}
+
+// The curves as an edge layer in the plane of the drawing (or on `surface`), quality = curve id.
+Polylines curves_in_mesh_units(const DrawingCurves& dc, double pixel_mm) {
+  Polylines pl;
+  for (size_t k = 0; k < dc.curves.size(); ++k) {
+    const int first = int(pl.points.size());
+    for (const auto& q : dc.curves[k]) {
+      pl.points.push_back(Vec3(q.x() * pixel_mm, -q.y() * pixel_mm, 0));
+      pl.strength.push_back(double(k));
+    }
+    for (int i = first; i + 1 < int(pl.points.size()); ++i) pl.segments.push_back({i, i + 1});
+  }
+  return pl;
+}
+
+QString image_label(const Drawing& d, const char* what) { return QFileInfo(d.path).completeBaseName() + QString::fromUtf8(" – ") + what; }
+
+// ---- Line Drawing to Curves ----
+
+void curves_parameters(MeshModel&, RichParameterList& par) { drawing_parameters(par); }
+
+void apply_curves(FilterCall& call) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Drawing d = read_drawing(call);
+  const QString label = image_label(d, "curves");
+  add_curve_layer(call.doc, label, curves_in_mesh_units(d.curves, d.pixel_mm), vcg::Color4b(20, 20, 20, 255));
+  call.log(QString("Line Drawing to Curves: \"%1\" %2 x %3 px; %4 curves (%5 px of lines, %6 junctions), %7 short strokes "
+                   "dropped; layer \"%8\", pixel %9 mm; %10 s.")
+               .arg(QFileInfo(d.path).fileName())
+               .arg(d.image.cols)
+               .arg(d.image.rows)
+               .arg(d.curves.curves.size())
+               .arg(thousands((long long)std::lround(d.curves.total_length())))
+               .arg(d.curves.junctions.size())
+               .arg(d.curves.dropped_short)
+               .arg(label)
+               .arg(d.pixel_mm, 0, 'g', 4)
+               .arg(seconds_since(t0), 0, 'f', 2));
+}
+
+// ---- Relief from Line Drawing ----
+
+void relief_parameters(MeshModel&, RichParameterList& par) {
+  drawing_parameters(par);
+  par.addParam(RichOpenFile("interpretation", "", QStringList{"*.json"}, "Interpretation file",
+                            "Empty: automatic. Otherwise a JSON interpretation file (as this filter writes beside the "
+                            "image, edited): its curves' directions, weights and profiles are kept."));
+  par.addParam(RichEnum("base", 0, kBases, "Base",
+                        "The surface the relief stands on: a plane, or a cylinder round which the drawing is rolled "
+                        "(its width is the circumference)."));
+  par.addParam(RichFloat("margin", 4.f, "Step width (px)",
+                         "Half-width of the smoothed step across each line, in pixels of the drawing. Closely drawn "
+                         "lines need a small width; wide ones give softer steps."));
+  par.addParam(RichFloat("step_height", 1.f, "Step height (% of the drawing's width)",
+                         "Height of one level, as a percentage of the width of the drawn part of the image, so the "
+                         "same script suits any DPI and scale."));
+  par.addParam(RichFloat("cell", 0.f, "Base resolution (px)",
+                         "Spacing of the base's vertices in pixels of the drawing. 0: automatic, half the step width "
+                         "(so each step is resolved), coarser only when the base would exceed 4 million vertices."));
+}
+
+constexpr long kMaxAutoVertices = 4000000;
+
+void apply_relief(FilterCall& call) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Drawing d = read_drawing(call);
+  const QString interp_path = call.params.getOpenFileName("interpretation").trimmed();
+  const auto base = static_cast<DrawingBase>(read_enum(call, "base", "Base", kBases.size()));
+  DrawingReliefParams rp;
+  rp.margin = read_float(call, "margin", "Step width (px)", 0.5, 1000);
+  const double step_pct = read_float(call, "step_height", "Step height (% of the drawing's width)", 1e-6, 1000);
+  double cell = read_float(call, "cell", "Base resolution (px)", 0, 1000);
+
+  // Interpretation: automatic, with the user's overrides when a file is given.
+  InterpretationParams ip;
+  ip.margin = std::max(3.0, 0.75 * rp.margin);
+  if (!interp_path.isEmpty()) {
+    QFile f(interp_path);
+    if (!f.open(QIODevice::ReadOnly))
+      throw InputError(("The interpretation file \"" + interp_path + "\" does not exist or cannot be read.").toStdString());
+    const QByteArray text = f.readAll();
+    ip.overrides = overrides_from_json(text.toStdString(), d.curves);
+  }
+  if (call.progress) call.progress(30, "Interpreting the drawing");
+  const DrawingInterpretation di = interpret_drawing(d.curves, ip);
+  int top = 0;
+  for (int h : di.region_height) top = std::max(top, h);
+
+  // The base grid over the drawn part of the image.
+  const cv::Rect area = drawing_extent(d.curves, 4 * rp.margin + 4);
+  if (cell <= 0) {
+    cell = std::max(0.5, rp.margin / 2);
+    const double verts = (area.width / cell + 1) * (area.height / cell + 1);
+    if (verts > kMaxAutoVertices) {
+      const double c2 = std::sqrt(double(area.width) * area.height / kMaxAutoVertices);
+      call.log(QString("Base resolution: %1 px per vertex would make %2 vertices; %3 px taken (steps less finely resolved; "
+                       "set Base resolution to override).")
+                   .arg(cell, 0, 'g', 3)
+                   .arg(thousands((long long)verts))
+                   .arg(c2, 0, 'g', 3));
+      cell = c2;
+    }
+  }
+  rp.pixel_size = d.pixel_mm;
+  rp.step_height = step_pct / 100 * area.width * d.pixel_mm;
+  if (call.progress) call.progress(40, "Reconstructing the relief");
+  const TriMesh grid = drawing_grid(area.width, area.height, cell, d.pixel_mm, area.x, area.y);
+  const DrawingRelief r = reconstruct_drawing_relief(grid, d.curves, di, rp);
+  const double circumference = d.image.cols * d.pixel_mm;
+  const TriMesh surface = relief_surface(grid, r.height, base, circumference);
+  std::vector<double> level(size_t(grid.n_vertices()), 0);
+  for (int v = 0; v < grid.n_vertices(); ++v) {
+    const int x = int(std::lround(grid.vertices[v].x() / d.pixel_mm)), y = int(std::lround(-grid.vertices[v].y() / d.pixel_mm));
+    const int reg = (x >= 0 && y >= 0 && x < di.regions.cols && y < di.regions.rows) ? di.regions.at<int>(y, x) : -1;
+    level[size_t(v)] = reg >= 0 ? di.region_height[size_t(reg)] : -1;
+  }
+
+  // The interpretation file beside the image (only when none was given: the user's file stays as written).
+  QString written;
+  if (interp_path.isEmpty()) {
+    const QFileInfo fi(d.path);
+    written = fi.absoluteDir().filePath(fi.completeBaseName() + ".interpretation.json");
+    QFile f(written);
+    const std::string text = interpretation_to_json(fi.fileName().toStdString(), d.curves, d.detection, di);
+    if (f.open(QIODevice::WriteOnly | QIODevice::Truncate) && f.write(text.data(), qint64(text.size())) == qint64(text.size())) {
+      f.close();
+    } else {
+      call.log("The interpretation file could not be written beside the drawing (" + written + "): the folder is not writable.");
+      written.clear();
+    }
+  }
+
+  if (call.progress) call.progress(95, "Adding the layers");
+  // The curves on the relief: each curve point at the height of the surface below it (bilinear in the grid).
+  Polylines pl = curves_in_mesh_units(d.curves, d.pixel_mm);
+  {
+    const int nx = int(std::ceil((area.width - 1) / cell)) + 1, ny = int(std::ceil((area.height - 1) / cell)) + 1;
+    std::vector<double> hgt(pl.points.size(), 0);
+    for (size_t i = 0; i < pl.points.size(); ++i) {
+      const double gx = std::clamp((pl.points[i].x() / d.pixel_mm - area.x) / cell, 0.0, nx - 1.0);
+      const double gy = std::clamp((-pl.points[i].y() / d.pixel_mm - area.y) / cell, 0.0, ny - 1.0);
+      const int i0 = std::min(nx - 2, int(gx)), j0 = std::min(ny - 2, int(gy));
+      const double fx = gx - i0, fy = gy - j0;
+      auto H = [&](int i, int j) { return r.height[size_t(j * nx + i)]; };
+      hgt[i] = (1 - fy) * ((1 - fx) * H(i0, j0) + fx * H(i0 + 1, j0)) + fy * ((1 - fx) * H(i0, j0 + 1) + fx * H(i0 + 1, j0 + 1));
+    }
+    TriMesh pts;
+    pts.vertices = pl.points;
+    const TriMesh lifted = relief_surface(pts, hgt, base, circumference);
+    pl.points = lifted.vertices;
+  }
+  const QString relief_label = image_label(d, "relief");
+  add_curve_layer(call.doc, image_label(d, "curves"), pl, vcg::Color4b(200, 30, 30, 255));
+  add_mesh_layer(call.doc, relief_label, surface, r.height, {{"drawing_level", &level}}, true);
+  call.log(QString("Relief from Line Drawing: %1 curves, %2 regions (%3 curves not between two regions), levels 0 to %4, "
+                   "%5 curves fixed by the interpretation file; base %6, %7 vertices (%8 px apart), step %9 mm; "
+                   "solves: %10 | %11; %12 s.%13")
+               .arg(d.curves.curves.size())
+               .arg(di.region_count)
+               .arg(di.ignored_curves)
+               .arg(top)
+               .arg(ip.overrides.size())
+               .arg(kBases[int(base)].section(' ', 0, 0))
+               .arg(thousands(grid.n_vertices()))
+               .arg(cell, 0, 'g', 3)
+               .arg(rp.step_height, 0, 'g', 3)
+               .arg(QString::fromStdString(r.laplacian_solve.summary()))
+               .arg(QString::fromStdString(r.relief_solve.summary()))
+               .arg(seconds_since(t0), 0, 'f', 2)
+               .arg(written.isEmpty() ? QString() : " Interpretation written to " + written + "."));
+}
+
+}  // namespace
+
+FilterSpec drawing_curves_filter(int id) {
+  FilterSpec s{id,
+               "Line Drawing to Curves",
+               QString(kCurvesInfo) + kCitation,
+               MeshFilterInterface::MeshCreation,
+               MeshModel::MM_NONE,
+               MeshModel::MM_NONE,
+               curves_parameters,
+               apply_curves,
+               true};
+  s.needs_mesh = false;
+  return s;
+}
+
+FilterSpec drawing_relief_filter(int id) {
+  FilterSpec s{id,
+               "Relief from Line Drawing",
+               QString(kReliefInfo) + kCitation,
+               MeshFilterInterface::MeshCreation,
+               MeshModel::MM_NONE,
+               MeshModel::MM_NONE,
+               relief_parameters,
+               apply_relief,
+               true};
+  s.needs_mesh = false;
+  return s;
+}
+
+}  // namespace reliefkit::ml

@@ -1,0 +1,12 @@
+#include "drawing_plugin.h"
+
+#include "drawing_filters.h"
+
+using namespace reliefkit::ml;
+
+namespace {
+enum FilterId { DRAWING_CURVES, DRAWING_RELIEF };
+}
+
+ReliefKitDrawingPlugin::ReliefKitDrawingPlugin()
+    : ReliefKitPlugin("ReliefKitDrawing", {drawing_curves_filter(DRAWING_CURVES), drawing_relief_filter(DRAWING_RELIEF)}) {}

@@ -1,0 +1,13 @@
+// ReliefKit — Drawing plugin (thesis chapter 7): curves of a raster line drawing, and a relief
+// reconstructed from them.
+#pragma once
+
+#include "rk_plugin.h"
+
+class ReliefKitDrawingPlugin : public reliefkit::ml::ReliefKitPlugin {
+  Q_OBJECT
+  MESHLAB_PLUGIN_IID_EXPORTER(MESH_FILTER_INTERFACE_IID)
+  Q_INTERFACES(MeshFilterInterface)
+ public:
+  ReliefKitDrawingPlugin();
+};
