@@ -5,6 +5,7 @@
 #include <QFileInfo>
 #include <chrono>
 #include <cmath>
+#include <unordered_map>
 
 #include "mesh_bridge.h"
 #include "params.h"
@@ -51,7 +52,9 @@ const char* kReliefInfo =
     "eq. 7.6). ";
 
 const QStringList kImageExts = {"*.png", "*.jpg", "*.jpeg", "*.tif", "*.tiff", "*.bmp"};
-const QStringList kBases = {"Plane", "Cylinder (the drawing's width goes round it)"};
+const QStringList kBases = {"Plane", "Cylinder (the drawing's width goes round it)",
+                             "Current layer (the drawing projected onto it)"};
+enum BaseChoice { kPlane, kCylinder, kCurrent };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -162,12 +165,17 @@ void relief_parameters(MeshModel&, RichParameterList& par) {
                             "Empty: automatic. Otherwise a JSON interpretation file (as this filter writes beside the "
                             "image, edited): its curves' directions, weights and profiles are kept."));
   par.addParam(RichEnum("base", 0, kBases, "Base",
-                        "The surface the relief stands on: a plane, or a cylinder round which the drawing is rolled "
-                        "(its width is the circumference)."));
+                        "The surface the relief stands on: a plane; a cylinder round which the drawing is rolled (its "
+                        "width is the circumference); or the current layer (any mesh: a scan of the object, or its "
+                        "smooth base), onto which the drawing is projected along the view direction, scaled to fit "
+                        "the part of it that faces the view."));
+  par.addParam(RichPoint3f("view", vcg::Point3f(0, 0, 0), "View direction (current layer)",
+                           "Direction in which the drawing is projected onto the current layer (towards it). 0 0 0: "
+                           "automatic, along the layer's axis of least extent (the normal of a plaque)."));
   par.addParam(RichFloat("margin", 4.f, "Step width (px)",
                          "Half-width of the smoothed step across each line, in pixels of the drawing. Closely drawn "
                          "lines need a small width; wide ones give softer steps."));
-  par.addParam(RichFloat("step_height", 1.f, "Step height (% of the drawing's width)",
+  par.addParam(RichFloat("step_height", 0.5f, "Step height (% of the drawing's width)",
                          "Height of one level, as a percentage of the width of the drawn part of the image, so the "
                          "same script suits any DPI and scale."));
   par.addParam(RichFloat("cell", 0.f, "Base resolution (px)",
@@ -181,7 +189,7 @@ void apply_relief(FilterCall& call) {
   const auto t0 = std::chrono::steady_clock::now();
   Drawing d = read_drawing(call);
   const QString interp_path = call.params.getOpenFileName("interpretation").trimmed();
-  const auto base = static_cast<DrawingBase>(read_enum(call, "base", "Base", kBases.size()));
+  const int base = read_enum(call, "base", "Base", kBases.size());
   DrawingReliefParams rp;
   rp.margin = read_float(call, "margin", "Step width (px)", 0.5, 1000);
   const double step_pct = read_float(call, "step_height", "Step height (% of the drawing's width)", 1e-6, 1000);
@@ -202,33 +210,77 @@ void apply_relief(FilterCall& call) {
   int top = 0;
   for (int h : di.region_height) top = std::max(top, h);
 
-  // The base grid over the drawn part of the image.
+  // The base: a grid over the drawn part of the image (plane, cylinder), or the current layer.
   const cv::Rect area = drawing_extent(d.curves, 4 * rp.margin + 4);
-  if (cell <= 0) {
-    cell = std::max(0.5, rp.margin / 2);
-    const double verts = (area.width / cell + 1) * (area.height / cell + 1);
-    if (verts > kMaxAutoVertices) {
-      const double c2 = std::sqrt(double(area.width) * area.height / kMaxAutoVertices);
-      call.log(QString("Base resolution: %1 px per vertex would make %2 vertices; %3 px taken (steps less finely resolved; "
-                       "set Base resolution to override).")
-                   .arg(cell, 0, 'g', 3)
-                   .arg(thousands((long long)verts))
-                   .arg(c2, 0, 'g', 3));
-      cell = c2;
+  const int base_choice = int(base);
+  TriMesh grid, surface;
+  DrawingRelief r;
+  std::vector<double> level;
+  DrawingProjection proj;
+  const double circumference = d.image.cols * d.pixel_mm, front = (area.x + 0.5 * area.width) * d.pixel_mm;
+  if (base_choice == kCurrent) {
+    if (call.current == nullptr || call.current->cm.fn == 0)
+      throw InputError("Base \"Current layer\" needs a mesh layer with faces: open the base mesh first, or choose the "
+                       "Plane or Cylinder base.");
+    const vcg::Point3f vd = call.params.getPoint3m("view");
+    const Vec3 view(vd[0], vd[1], vd[2]);
+    if (!std::isfinite(view.norm())) throw InputError("View direction: the numbers must be finite (0 0 0 for automatic).");
+    View bv = view_of(call.mesh(), call.log);
+    proj = project_drawing(bv.mesh, area, view);
+    rp.pixel_size = proj.pixel_size;
+    rp.step_height = step_pct / 100 * area.width * proj.pixel_size;
+    if (proj.edge_px > rp.margin / 2)
+      call.log(QString("The base's edges are %1 px of the drawing, but steps %2 px wide need edges of at most %3 px: the "
+                       "relief will be coarse. Subdivide the base first (Filters > Remeshing, Simplification and "
+                       "Reconstruction > Subdivision Surfaces: Midpoint) or raise Step width.")
+                   .arg(proj.edge_px, 0, 'g', 3)
+                   .arg(rp.margin, 0, 'g', 3)
+                   .arg(rp.margin / 2, 0, 'g', 3));
+    if (call.progress) call.progress(40, "Reconstructing the relief");
+    r = reconstruct_drawing_relief(bv.mesh, d.curves, di, rp, &proj.pixel);
+    surface = displace_along_normals(bv.mesh, r.height);
+    grid = bv.mesh;
+    level.assign(size_t(grid.n_vertices()), -1);
+    for (int v = 0; v < grid.n_vertices(); ++v) {
+      const Vec2 q = proj.pixel[size_t(v)];
+      if (!std::isfinite(q.x())) continue;
+      const int x = int(std::lround(q.x())), y = int(std::lround(q.y()));
+      const int reg = (x >= 0 && y >= 0 && x < di.regions.cols && y < di.regions.rows) ? di.regions.at<int>(y, x) : -1;
+      level[size_t(v)] = reg >= 0 ? di.region_height[size_t(reg)] : -1;
     }
-  }
-  rp.pixel_size = d.pixel_mm;
-  rp.step_height = step_pct / 100 * area.width * d.pixel_mm;
-  if (call.progress) call.progress(40, "Reconstructing the relief");
-  const TriMesh grid = drawing_grid(area.width, area.height, cell, d.pixel_mm, area.x, area.y);
-  const DrawingRelief r = reconstruct_drawing_relief(grid, d.curves, di, rp);
-  const double circumference = d.image.cols * d.pixel_mm;
-  const TriMesh surface = relief_surface(grid, r.height, base, circumference);
-  std::vector<double> level(size_t(grid.n_vertices()), 0);
-  for (int v = 0; v < grid.n_vertices(); ++v) {
-    const int x = int(std::lround(grid.vertices[v].x() / d.pixel_mm)), y = int(std::lround(-grid.vertices[v].y() / d.pixel_mm));
-    const int reg = (x >= 0 && y >= 0 && x < di.regions.cols && y < di.regions.rows) ? di.regions.at<int>(y, x) : -1;
-    level[size_t(v)] = reg >= 0 ? di.region_height[size_t(reg)] : -1;
+    call.log(QString("Drawing projected along (%1, %2, %3) onto %4 of the layer's %5 vertices, %6 mesh units per pixel.")
+                 .arg(proj.view.x(), 0, 'f', 3)
+                 .arg(proj.view.y(), 0, 'f', 3)
+                 .arg(proj.view.z(), 0, 'f', 3)
+                 .arg(thousands(proj.covered))
+                 .arg(thousands(grid.n_vertices()))
+                 .arg(proj.pixel_size, 0, 'g', 4));
+  } else {
+    if (cell <= 0) {
+      cell = std::max(0.5, rp.margin / 2);
+      const double verts = (area.width / cell + 1) * (area.height / cell + 1);
+      if (verts > kMaxAutoVertices) {
+        const double c2 = std::sqrt(double(area.width) * area.height / kMaxAutoVertices);
+        call.log(QString("Base resolution: %1 px per vertex would make %2 vertices; %3 px taken (steps less finely "
+                         "resolved; set Base resolution to override).")
+                     .arg(cell, 0, 'g', 3)
+                     .arg(thousands((long long)verts))
+                     .arg(c2, 0, 'g', 3));
+        cell = c2;
+      }
+    }
+    rp.pixel_size = d.pixel_mm;
+    rp.step_height = step_pct / 100 * area.width * d.pixel_mm;
+    if (call.progress) call.progress(40, "Reconstructing the relief");
+    grid = drawing_grid(area.width, area.height, cell, d.pixel_mm, area.x, area.y);
+    r = reconstruct_drawing_relief(grid, d.curves, di, rp);
+    surface = relief_surface(grid, r.height, base_choice == kCylinder ? DrawingBase::Cylinder : DrawingBase::Plane, circumference, front);
+    level.assign(size_t(grid.n_vertices()), 0);
+    for (int v = 0; v < grid.n_vertices(); ++v) {
+      const int x = int(std::lround(grid.vertices[v].x() / d.pixel_mm)), y = int(std::lround(-grid.vertices[v].y() / d.pixel_mm));
+      const int reg = (x >= 0 && y >= 0 && x < di.regions.cols && y < di.regions.rows) ? di.regions.at<int>(y, x) : -1;
+      level[size_t(v)] = reg >= 0 ? di.region_height[size_t(reg)] : -1;
+    }
   }
 
   // The interpretation file beside the image (only when none was given: the user's file stays as written).
@@ -247,9 +299,45 @@ void apply_relief(FilterCall& call) {
   }
 
   if (call.progress) call.progress(95, "Adding the layers");
-  // The curves on the relief: each curve point at the height of the surface below it (bilinear in the grid).
+  // The curves on the relief.
   Polylines pl = curves_in_mesh_units(d.curves, d.pixel_mm);
-  {
+  if (base_choice == kCurrent) {
+    // Each curve point at the covered vertex nearest to it in the drawing, moved within the image
+    // plane by the remaining offset (a grid of the covered vertices' pixel positions).
+    const double cellpx = std::max(1.0, 2 * proj.edge_px);
+    std::unordered_map<long long, std::vector<int>> bins;
+    auto key = [&](double x, double y) { return (long long)std::floor(x / cellpx) * 1000003LL + (long long)std::floor(y / cellpx); };
+    for (int v = 0; v < grid.n_vertices(); ++v)
+      if (std::isfinite(proj.pixel[size_t(v)].x())) bins[key(proj.pixel[size_t(v)].x(), proj.pixel[size_t(v)].y())].push_back(v);
+    std::vector<char> keep(pl.points.size(), 1);
+    size_t i = 0;
+    for (const auto& c : d.curves.curves)
+      for (const auto& q : c) {
+        int best = -1;
+        double bd = 1e300;
+        for (int ox = -1; ox <= 1; ++ox)
+          for (int oy = -1; oy <= 1; ++oy) {
+            auto it = bins.find(key(q.x() + ox * cellpx, q.y() + oy * cellpx));
+            if (it == bins.end()) continue;
+            for (int v : it->second) {
+              const double dd = (proj.pixel[size_t(v)] - q).squaredNorm();
+              if (dd < bd) bd = dd, best = v;
+            }
+          }
+        if (best < 0) {
+          keep[i] = 0;
+          pl.points[i++] = Vec3::Zero();
+          continue;
+        }
+        const Vec2 off = q - proj.pixel[size_t(best)];
+        pl.points[i++] = surface.vertices[best] + proj.pixel_size * (off.x() * proj.right - off.y() * proj.up);
+      }
+    std::vector<std::array<int, 2>> segs;
+    for (const auto& sgm : pl.segments)
+      if (keep[size_t(sgm[0])] && keep[size_t(sgm[1])]) segs.push_back(sgm);
+    pl.segments = segs;
+  } else {
+    // Each curve point at the height of the surface below it (bilinear in the grid).
     const int nx = int(std::ceil((area.width - 1) / cell)) + 1, ny = int(std::ceil((area.height - 1) / cell)) + 1;
     std::vector<double> hgt(pl.points.size(), 0);
     for (size_t i = 0; i < pl.points.size(); ++i) {
@@ -257,28 +345,27 @@ void apply_relief(FilterCall& call) {
       const double gy = std::clamp((-pl.points[i].y() / d.pixel_mm - area.y) / cell, 0.0, ny - 1.0);
       const int i0 = std::min(nx - 2, int(gx)), j0 = std::min(ny - 2, int(gy));
       const double fx = gx - i0, fy = gy - j0;
-      auto H = [&](int i, int j) { return r.height[size_t(j * nx + i)]; };
+      auto H = [&](int a, int b) { return r.height[size_t(b * nx + a)]; };
       hgt[i] = (1 - fy) * ((1 - fx) * H(i0, j0) + fx * H(i0 + 1, j0)) + fy * ((1 - fx) * H(i0, j0 + 1) + fx * H(i0 + 1, j0 + 1));
     }
     TriMesh pts;
     pts.vertices = pl.points;
-    const TriMesh lifted = relief_surface(pts, hgt, base, circumference);
-    pl.points = lifted.vertices;
+    pl.points = relief_surface(pts, hgt, base_choice == kCylinder ? DrawingBase::Cylinder : DrawingBase::Plane, circumference, front).vertices;
   }
   const QString relief_label = image_label(d, "relief");
   add_curve_layer(call.doc, image_label(d, "curves"), pl, vcg::Color4b(200, 30, 30, 255));
   add_mesh_layer(call.doc, relief_label, surface, r.height, {{"drawing_level", &level}}, true);
   call.log(QString("Relief from Line Drawing: %1 curves, %2 regions (%3 curves not between two regions), levels 0 to %4, "
-                   "%5 curves fixed by the interpretation file; base %6, %7 vertices (%8 px apart), step %9 mm; "
+                   "%5 curves fixed by the interpretation file; base %6, %7 vertices (%8 px apart), step %9 mesh units; "
                    "solves: %10 | %11; %12 s.%13")
                .arg(d.curves.curves.size())
                .arg(di.region_count)
                .arg(di.ignored_curves)
                .arg(top)
                .arg(ip.overrides.size())
-               .arg(kBases[int(base)].section(' ', 0, 0))
+               .arg(kBases[base_choice].section(' ', 0, base_choice == kCurrent ? 1 : 0))
                .arg(thousands(grid.n_vertices()))
-               .arg(cell, 0, 'g', 3)
+               .arg(base_choice == kCurrent ? proj.edge_px : cell, 0, 'g', 3)
                .arg(rp.step_height, 0, 'g', 3)
                .arg(QString::fromStdString(r.laplacian_solve.summary()))
                .arg(QString::fromStdString(r.relief_solve.summary()))

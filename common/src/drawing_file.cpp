@@ -16,6 +16,12 @@ const char* kFormat = "reliefkit-drawing-interpretation";
 
 const char* profile_name(CurveProfile p) { return p == CurveProfile::Ridge ? "ridge" : p == CurveProfile::Valley ? "valley" : "step"; }
 
+json shape_json(const std::vector<Vec2>& shape) {
+  json a = json::array();
+  for (const Vec2& q : shape) a.push_back({q.x(), q.y()});
+  return a;
+}
+
 json point(const Vec2& p) { return json::array({std::round(p.x() * 10) / 10, std::round(p.y() * 10) / 10}); }
 
 }  // namespace
@@ -31,8 +37,10 @@ std::string interpretation_to_json(const std::string& drawing_name, const Drawin
   j["help"] =
       "Curve ids follow the extraction with these parameters. Per curve: direction 'auto', 'left-lower' or "
       "'right-lower' (seen along the curve from start to end, image y down); weight 0 (automatic) or the least step "
-      "in levels (for a ridge or valley: its height in levels); profile 'step', 'ridge' or 'valley'. step = level "
-      "right - level left as interpreted.";
+      "in levels (for a ridge or valley: its height in levels); profile 'step', 'ridge' or 'valley', with an optional "
+      "free-form 'shape' [[t, value], ...] (t from -1, the left side, to 1); or 'spans': [{'from': 0, 'to': 0.5, "
+      "'profile': ...}, ...] for several profiles along the curve (arc-length fractions). step = level right - "
+      "level left as interpreted. Format: docs/drawing_recon.md.";
   json curves = json::array();
   for (size_t k = 0; k < dc.curves.size(); ++k) {
     const auto& c = dc.curves[k];
@@ -49,7 +57,21 @@ std::string interpretation_to_json(const std::string& drawing_name, const Drawin
     e["step"] = k < di.step.size() ? di.step[k] : 0;
     e["direction"] = "auto";
     e["weight"] = k < di.weight.size() ? di.weight[k] : 0;
-    e["profile"] = profile_name(k < di.profile.size() ? di.profile[k] : CurveProfile::Step);
+    const bool spans = k < di.profiles.size() && !di.profiles[k].empty();
+    if (!spans) {
+      e["profile"] = "step";
+    } else if (di.profiles[k].size() == 1 && di.profiles[k][0].from == 0 && di.profiles[k][0].to == 1) {
+      e["profile"] = profile_name(di.profiles[k][0].profile);
+      if (!di.profiles[k][0].shape.empty()) e["shape"] = shape_json(di.profiles[k][0].shape);
+    } else {
+      json list = json::array();
+      for (const ProfileSpan& sp : di.profiles[k]) {
+        json x = {{"from", sp.from}, {"to", sp.to}, {"profile", profile_name(sp.profile)}};
+        if (!sp.shape.empty()) x["shape"] = shape_json(sp.shape);
+        list.push_back(x);
+      }
+      e["spans"] = list;
+    }
     curves.push_back(e);
   }
   j["curves"] = curves;
@@ -113,14 +135,42 @@ std::vector<CurveOverride> read_overrides(const std::string& text, const Drawing
       if (!e["weight"].is_number_integer()) throw InputError("Curve " + std::to_string(id) + ": the weight must be a whole number.");
       o.weight = e["weight"].get<int>();
     }
-    const std::string prof = e.value("profile", "step");
-    if (prof == "ridge")
-      o.profile = CurveProfile::Ridge;
-    else if (prof == "valley")
-      o.profile = CurveProfile::Valley;
-    else if (prof != "step")
-      throw InputError("Curve " + std::to_string(id) + ": profile \"" + prof + "\" is not one of step, ridge, valley.");
-    if (o.direction != CurveOverride::Direction::Auto || o.weight != 0 || o.profile != CurveProfile::Step) out.push_back(o);
+    // Profiles: "profile" (+ "shape") for the whole curve, or "spans" of several.
+    auto read_span = [&](const json& x, ProfileSpan& sp) {
+      const std::string prof = x.value("profile", "step");
+      if (prof == "ridge")
+        sp.profile = CurveProfile::Ridge;
+      else if (prof == "valley")
+        sp.profile = CurveProfile::Valley;
+      else if (prof != "step")
+        throw InputError("Curve " + std::to_string(id) + ": profile \"" + prof + "\" is not one of step, ridge, valley.");
+      if (x.contains("shape")) {
+        if (!x["shape"].is_array() || x["shape"].size() < 2)
+          throw InputError("Curve " + std::to_string(id) + ": a shape is a list of at least two [t, value] pairs.");
+        for (const json& q : x["shape"]) {
+          if (!q.is_array() || q.size() != 2 || !q[0].is_number() || !q[1].is_number())
+            throw InputError("Curve " + std::to_string(id) + ": a shape is a list of [t, value] pairs of numbers.");
+          sp.shape.push_back(Vec2(q[0].get<double>(), q[1].get<double>()));
+        }
+      }
+      return prof != "step" || !sp.shape.empty();
+    };
+    bool custom = false;
+    if (e.contains("spans")) {
+      if (!e["spans"].is_array()) throw InputError("Curve " + std::to_string(id) + ": \"spans\" must be a list.");
+      for (const json& x : e["spans"]) {
+        ProfileSpan sp;
+        read_span(x, sp);
+        sp.from = x.value("from", 0.0);
+        sp.to = x.value("to", 1.0);
+        o.spans.push_back(sp);
+      }
+      custom = !o.spans.empty();
+    } else {
+      ProfileSpan sp;
+      if (read_span(e, sp)) o.spans.push_back(sp), custom = true;
+    }
+    if (o.direction != CurveOverride::Direction::Auto || o.weight != 0 || custom) out.push_back(o);
   }
   return out;
 }

@@ -3,6 +3,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <deque>
 #include <map>
 #include <queue>
@@ -37,11 +38,19 @@ int majority(const std::map<int, int>& votes) {
 
 }  // namespace
 
+bool CurveOverride::is_step() const {
+  if (spans.empty()) return true;
+  for (const ProfileSpan& s : spans)
+    if (s.profile == CurveProfile::Step) return true;
+  return false;
+}
+
 DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const InterpretationParams& p) {
   p.validate();
   const int nc = static_cast<int>(dc.curves.size());
   DrawingInterpretation out;
-  out.profile.assign(size_t(nc), CurveProfile::Step);
+  out.profiles.assign(size_t(nc), {});
+  out.is_step.assign(size_t(nc), 1);
   out.weight.assign(size_t(nc), 0);
   std::vector<CurveOverride::Direction> direction(size_t(nc), CurveOverride::Direction::Auto);
   std::vector<char> seen(size_t(nc), 0);
@@ -53,7 +62,18 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
     if (f.weight < 0 || f.weight > 1000)
       throw InputError("The interpretation gives curve " + std::to_string(f.curve) + " the weight " + std::to_string(f.weight) +
                        "; weights are whole numbers from 0 (automatic) to 1000.");
-    out.profile[size_t(f.curve)] = f.profile;
+    for (const ProfileSpan& sp : f.spans) {
+      if (!(sp.from >= 0 && sp.to <= 1 && sp.from < sp.to))
+        throw InputError("The interpretation gives curve " + std::to_string(f.curve) +
+                         " a profile span that is not within 0 to 1 (from < to).");
+      for (size_t i = 0; i < sp.shape.size(); ++i)
+        if (!std::isfinite(sp.shape[i].x()) || !std::isfinite(sp.shape[i].y()) || sp.shape[i].x() < -1 || sp.shape[i].x() > 1 ||
+            (i > 0 && !(sp.shape[i].x() > sp.shape[i - 1].x())))
+          throw InputError("The interpretation gives curve " + std::to_string(f.curve) +
+                           " a free-form shape whose t values are not increasing within -1 to 1.");
+    }
+    out.profiles[size_t(f.curve)] = f.spans;
+    out.is_step[size_t(f.curve)] = f.is_step();
     out.weight[size_t(f.curve)] = f.weight;
     direction[size_t(f.curve)] = f.direction;
   }
@@ -130,14 +150,14 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
     return a >= 0 && b >= 0 && a != b && !small[size_t(a)] && !small[size_t(b)];
   };
   for (int k = 0; k < nc; ++k)
-    if (out.profile[size_t(k)] != CurveProfile::Step && usable(k)) node[size_t(find(out.sides[size_t(k)][0]))] = find(out.sides[size_t(k)][1]);
+    if (!out.is_step[size_t(k)] && usable(k)) node[size_t(find(out.sides[size_t(k)][0]))] = find(out.sides[size_t(k)][1]);
   // The graph: nodes, steps between two different nodes (neither of them a speck), each step at
   // least its weight.
   std::vector<std::map<int, int>> adj(static_cast<size_t>(nr));  // node -> (node -> least step)
   std::vector<std::vector<int>> lower_than(static_cast<size_t>(nr));  // fixed: node -> nodes that must be above it
   std::vector<int> fixed_in(size_t(nr), 0);
   for (int k = 0; k < nc; ++k) {
-    if (!usable(k) || out.profile[size_t(k)] != CurveProfile::Step || find(out.sides[size_t(k)][0]) == find(out.sides[size_t(k)][1])) {
+    if (!usable(k) || !out.is_step[size_t(k)] || find(out.sides[size_t(k)][0]) == find(out.sides[size_t(k)][1])) {
       if (!usable(k)) ++out.ignored_curves;
       continue;
     }

@@ -31,10 +31,33 @@ struct DrawingRelief {
   SolveReport relief_solve;      // eq. 7.6
 };
 
-/// The relief on a flat base whose vertices lie in the drawing's plane (x, y in mesh units:
-/// pixel (px, py) is at (px * pixel_size, -py * pixel_size)); `base` gives the connectivity.
+/// The relief (height over the base, per base vertex). Without `pixel_of_vertex` the base lies in
+/// the drawing's plane: pixel (px, py) is at (px * pixel_size, -py * pixel_size). With it, it gives
+/// each base vertex's position in the drawing (px; NaN where the drawing does not cover the base:
+/// height 0 there), e.g. from project_drawing. The Laplacians are the base's own (cotangent).
 DrawingRelief reconstruct_drawing_relief(const TriMesh& base, const DrawingCurves& curves,
-                                         const DrawingInterpretation& interpretation, const DrawingReliefParams& params);
+                                         const DrawingInterpretation& interpretation, const DrawingReliefParams& params,
+                                         const std::vector<Vec2>* pixel_of_vertex = nullptr);
+
+/// A drawing laid onto a base mesh by orthographic projection along `view` (towards the base).
+struct DrawingProjection {
+  std::vector<Vec2> pixel;    // per base vertex: where it is in the drawing (px), NaN where not covered
+  Vec3 view = Vec3(0, 0, -1); // the projection direction used
+  Vec3 right, up;             // the image's x and -y directions on the base
+  double pixel_size = 1;      // mesh units per pixel
+  long covered = 0;           // base vertices the drawing covers
+  double edge_px = 0;         // median edge length of the covered part, in pixels
+};
+
+/// Projects the drawing's `extent` (px) onto the base: along `view`, or (view zero) along the base's
+/// axis of least extent, facing the side most of the base's area faces; the extent is scaled
+/// uniformly to fit the base's projected bounding box and centred on it, its longer side along the
+/// base's longer projected side. A vertex is covered when it faces the viewer and nothing of the
+/// base lies in front of it.
+DrawingProjection project_drawing(const TriMesh& base, const cv::Rect& extent, Vec3 view = Vec3(0, 0, 0));
+
+/// The base's vertices moved along their normals by `height` (normals of the base).
+TriMesh displace_along_normals(const TriMesh& base, const std::vector<double>& height);
 
 /// A regular grid over pixels [x0, x0 + width - 1] x [y0, y0 + height - 1] of the drawing (one vertex
 /// every `cell` px), z = 0: the flat base.
@@ -47,7 +70,8 @@ enum class DrawingBase { Plane, Cylinder };
 
 /// The relief as a surface: the flat grid's vertices raised by `height` along +z (Plane), or the
 /// grid rolled round a vertical cylinder whose circumference is the drawing's width (`circumference`,
-/// mesh units; image x runs round it) and raised along the outward normal (Cylinder).
-TriMesh relief_surface(const TriMesh& grid, const std::vector<double>& height, DrawingBase base, double circumference);
+/// mesh units; image x runs round it, x = `front` faces +z) and raised along the outward normal (Cylinder).
+TriMesh relief_surface(const TriMesh& grid, const std::vector<double>& height, DrawingBase base, double circumference,
+                       double front = 0);
 
 }  // namespace reliefkit
