@@ -10,7 +10,7 @@ namespace reliefkit {
 
 namespace {
 
-using nlohmann::json;
+using json = nlohmann::ordered_json;  // keys in the order written: id first
 
 const char* kFormat = "reliefkit-drawing-interpretation";
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <map>
 #include <queue>
 #include <numeric>
@@ -29,12 +30,8 @@ int region_at(const cv::Mat& labels, const Vec2& p) {
   return labels.at<int>(y, x);
 }
 
-int majority(const std::map<int, int>& votes) {
-  int best = -1, n = 0;
-  for (const auto& [r, c] : votes)
-    if (r >= 0 && c > n) best = r, n = c;
-  return best;
-}
+// Least samples for a pair of sides to count as a step of its curve (and at least a tenth of them).
+constexpr int kMinPairSamples = 4;
 
 }  // namespace
 
@@ -120,11 +117,15 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
     for (int r = 0; r < nr; ++r) small[size_t(r)] = area[size_t(r)] < p.min_region_area;
   }
 
-  // Each curve's two sides, by a vote of samples at `margin` beside it.
+  // Each curve's sides, by samples at `margin` beside it: the pair (left, right) most samples see,
+  // and every pair enough samples see (a curve running past a junction has other regions beside
+  // it along part of its length: each such pair is a step of its own in the graph).
   out.sides.assign(size_t(nc), {-1, -1});
+  std::vector<std::vector<std::array<int, 2>>> pairs(static_cast<size_t>(nc));
   for (int k = 0; k < nc; ++k) {
     const auto& c = dc.curves[size_t(k)];
-    std::map<int, int> left, right;
+    std::map<std::array<int, 2>, int> votes;
+    int samples = 0;
     for (size_t i = 0; i + 1 < c.size(); ++i) {
       Vec2 d = c[i + 1] - c[i];
       const double len = d.norm();
@@ -132,10 +133,17 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
       d /= len;
       const Vec2 l(d.y(), -d.x());  // left of the direction of travel, y down
       const Vec2 m = 0.5 * (c[i] + c[i + 1]);
-      ++left[region_at(labels, m + p.margin * l)];
-      ++right[region_at(labels, m - p.margin * l)];
+      ++votes[{region_at(labels, m + p.margin * l), region_at(labels, m - p.margin * l)}];
+      ++samples;
     }
-    out.sides[size_t(k)] = {majority(left), majority(right)};
+    int best = 0;
+    for (const auto& [pr, n] : votes) {
+      const bool ok = pr[0] >= 0 && pr[1] >= 0 && pr[0] != pr[1] && !small[size_t(pr[0])] && !small[size_t(pr[1])];
+      if (!ok) continue;
+      if (n > best) best = n, out.sides[size_t(k)] = pr;
+      if (n >= std::max(kMinPairSamples, samples / 10)) pairs[size_t(k)].push_back(pr);
+    }
+    if (best > 0 && pairs[size_t(k)].empty()) pairs[size_t(k)].push_back(out.sides[size_t(k)]);
   }
 
   // Ridges and valleys leave both their sides at one height: their sides are one node.
@@ -145,32 +153,33 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
     while (node[size_t(r)] != r) r = node[size_t(r)] = node[size_t(node[size_t(r)])];
     return r;
   };
-  auto usable = [&](int k) {
-    const auto [a, b] = out.sides[size_t(k)];
-    return a >= 0 && b >= 0 && a != b && !small[size_t(a)] && !small[size_t(b)];
-  };
   for (int k = 0; k < nc; ++k)
-    if (!out.is_step[size_t(k)] && usable(k)) node[size_t(find(out.sides[size_t(k)][0]))] = find(out.sides[size_t(k)][1]);
+    if (!out.is_step[size_t(k)])
+      for (const auto& pr : pairs[size_t(k)]) node[size_t(find(pr[0]))] = find(pr[1]);
   // The graph: nodes, steps between two different nodes (neither of them a speck), each step at
-  // least its weight.
+  // least its weight; a fixed direction holds for every pair of sides of its curve.
   std::vector<std::map<int, int>> adj(static_cast<size_t>(nr));  // node -> (node -> least step)
   std::vector<std::vector<int>> lower_than(static_cast<size_t>(nr));  // fixed: node -> nodes that must be above it
   std::vector<int> fixed_in(size_t(nr), 0);
   for (int k = 0; k < nc; ++k) {
-    if (!usable(k) || !out.is_step[size_t(k)] || find(out.sides[size_t(k)][0]) == find(out.sides[size_t(k)][1])) {
-      if (!usable(k)) ++out.ignored_curves;
+    if (pairs[size_t(k)].empty()) {
+      ++out.ignored_curves;
       continue;
     }
-    const int a = find(out.sides[size_t(k)][0]), b = find(out.sides[size_t(k)][1]), w = std::max(1, out.weight[size_t(k)]);
-    int& ab = adj[size_t(a)][b];
-    ab = std::max(ab, w);
-    int& ba = adj[size_t(b)][a];
-    ba = std::max(ba, w);
-    if (direction[size_t(k)] != CurveOverride::Direction::Auto) {
-      const bool left_lower = direction[size_t(k)] == CurveOverride::Direction::LeftLower;
-      const int lo = left_lower ? a : b, hi = left_lower ? b : a;
-      lower_than[size_t(lo)].push_back(hi);
-      ++fixed_in[size_t(hi)];
+    if (!out.is_step[size_t(k)]) continue;
+    for (const auto& pr : pairs[size_t(k)]) {
+      const int a = find(pr[0]), b = find(pr[1]), w = std::max(1, out.weight[size_t(k)]);
+      if (a == b) continue;
+      int& ab = adj[size_t(a)][b];
+      ab = std::max(ab, w);
+      int& ba = adj[size_t(b)][a];
+      ba = std::max(ba, w);
+      if (direction[size_t(k)] != CurveOverride::Direction::Auto) {
+        const bool left_lower = direction[size_t(k)] == CurveOverride::Direction::LeftLower;
+        const int lo = left_lower ? a : b, hi = left_lower ? b : a;
+        lower_than[size_t(lo)].push_back(hi);
+        ++fixed_in[size_t(hi)];
+      }
     }
   }
   // Base: among the regions no fixed direction puts above another, the one bordering most curves.
@@ -228,12 +237,27 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
   for (int u : order)
     for (const auto& [v, w] : adj[size_t(u)])
       if (rank[size_t(v)] > rank[size_t(u)]) level[size_t(v)] = std::max(level[size_t(v)], level[size_t(u)] + w);
+  // A region below all its neighbours that is not a base (one the user sank, say) sits as high as
+  // its steps allow: one step below its lowest neighbour, not down on the ground.
+  std::vector<char> is_base(size_t(nr), 0);
+  for (int b : out.base_regions) is_base[size_t(b)] = 1;
+  for (auto it = order.rbegin(); it != order.rend(); ++it) {
+    const int u = *it;
+    if (is_base[size_t(u)] || adj[size_t(u)].empty()) continue;
+    int up = std::numeric_limits<int>::max();
+    bool source = true;
+    for (const auto& [v, w] : adj[size_t(u)]) {
+      if (rank[size_t(v)] < rank[size_t(u)]) source = false;
+      up = std::min(up, level[size_t(v)] - w);
+    }
+    if (source && up > level[size_t(u)]) level[size_t(u)] = up;
+  }
   out.region_height.assign(size_t(nr), 0);
   for (int r = 0; r < nr; ++r) out.region_height[size_t(r)] = level[size_t(find(r))];
   out.step.assign(size_t(nc), 0);
   for (int k = 0; k < nc; ++k) {
     const auto [a, b] = out.sides[size_t(k)];
-    if (usable(k)) out.step[size_t(k)] = out.region_height[size_t(b)] - out.region_height[size_t(a)];
+    if (a >= 0 && b >= 0) out.step[size_t(k)] = out.region_height[size_t(b)] - out.region_height[size_t(a)];
   }
   return out;
 }

@@ -161,6 +161,13 @@ void join_pieces(std::vector<std::vector<Vec2>>& pieces, const LineDetectionPara
         }
       }
   }
+  // Where three or more ends meet (a junction: a T or a Y), the curves end there: the thesis'
+  // curves meet at junctions but do not run through them.
+  std::vector<int> partners(ends.size(), 0);
+  for (const Pair& c : cand) ++partners[size_t(c.a)], ++partners[size_t(c.b)];
+  cand.erase(std::remove_if(cand.begin(), cand.end(),
+                            [&](const Pair& c) { return partners[size_t(c.a)] > 1 || partners[size_t(c.b)] > 1; }),
+             cand.end());
   std::sort(cand.begin(), cand.end(), [](const Pair& x, const Pair& y) { return x.cost < y.cost; });
   // Union of pieces: each piece's current owner, and which end of the owner each end now is.
   std::vector<char> used(ends.size(), 0), closed(pieces.size(), 0);

@@ -2,7 +2,9 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <opencv2/imgcodecs.hpp>
 
 namespace rktest {
 
@@ -20,6 +22,74 @@ cv::Mat nested_drawing(double s, int line_px) {
   cv::rectangle(img, at(s, 120, 340), at(s, 460, 480), cv::Scalar(0), line_px, cv::LINE_AA);
   cv::line(img, at(s, 290, 340), at(s, 290, 480), cv::Scalar(0), line_px, cv::LINE_AA);
   return img;
+}
+
+namespace {
+double to_segment(const reliefkit::Vec2& p, const reliefkit::Vec2& a, const reliefkit::Vec2& b) {
+  const reliefkit::Vec2 d = b - a;
+  const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+  return (a + t * d - p).norm();
+}
+double to_rect(const reliefkit::Vec2& p, double x0, double y0, double x1, double y1) {
+  using reliefkit::Vec2;
+  return std::min({to_segment(p, Vec2(x0, y0), Vec2(x1, y0)), to_segment(p, Vec2(x1, y0), Vec2(x1, y1)),
+                   to_segment(p, Vec2(x1, y1), Vec2(x0, y1)), to_segment(p, Vec2(x0, y1), Vec2(x0, y0))});
+}
+}  // namespace
+
+double nested_truth_distance(const reliefkit::Vec2& p, double s) {
+  using reliefkit::Vec2;
+  const double d = std::min({to_rect(p, 40 * s, 40 * s, 560 * s, 560 * s), std::abs((p - Vec2(160, 160) * s).norm() - 70 * s),
+                             std::abs((p - Vec2(420, 170) * s).norm() - 90 * s), std::abs((p - Vec2(420, 170) * s).norm() - 40 * s),
+                             to_rect(p, 120 * s, 340 * s, 460 * s, 480 * s), to_segment(p, Vec2(290, 340) * s, Vec2(290, 480) * s)});
+  return d;
+}
+
+std::vector<reliefkit::Vec2> nested_truth_samples(double s) {
+  using reliefkit::Vec2;
+  std::vector<Vec2> out;
+  auto seg = [&](Vec2 a, Vec2 b) {
+    const int n = int((b - a).norm()) + 1;
+    for (int k = 0; k < n; ++k) out.push_back(a + (b - a) * (double(k) / n));
+  };
+  auto rect = [&](double x0, double y0, double x1, double y1) {
+    seg(Vec2(x0, y0), Vec2(x1, y0)), seg(Vec2(x1, y0), Vec2(x1, y1)), seg(Vec2(x1, y1), Vec2(x0, y1)), seg(Vec2(x0, y1), Vec2(x0, y0));
+  };
+  auto circle = [&](Vec2 c, double r) {
+    const int n = int(2 * 3.14159265358979 * r) + 1;
+    for (int k = 0; k < n; ++k) out.push_back(c + r * Vec2(std::cos(2 * 3.14159265358979 * k / n), std::sin(2 * 3.14159265358979 * k / n)));
+  };
+  rect(40 * s, 40 * s, 560 * s, 560 * s);
+  circle(Vec2(160, 160) * s, 70 * s), circle(Vec2(420, 170) * s, 90 * s), circle(Vec2(420, 170) * s, 40 * s);
+  rect(120 * s, 340 * s, 460 * s, 480 * s);
+  seg(Vec2(290, 340) * s, Vec2(290, 480) * s);
+  return out;
+}
+
+void add_shading(cv::Mat& img, cv::Rect area, double stroke, double spacing) {
+  // Hatching on the left half, stippling on the right half.
+  const int mid = area.x + area.width / 2;
+  for (double y = area.y; y < area.y + area.height; y += 2 * spacing)
+    for (double x = area.x; x < mid - stroke; x += spacing * 1.5)
+      cv::line(img, cv::Point(int(x), int(y)), cv::Point(int(x + stroke * 0.7), int(y + stroke * 0.7)), cv::Scalar(0), 1,
+               cv::LINE_AA);
+  for (double y = area.y; y < area.y + area.height; y += spacing)
+    for (double x = mid + ((int(y) / int(spacing)) % 2) * spacing / 2; x < area.x + area.width; x += spacing)
+      cv::circle(img, cv::Point(int(x), int(y)), 1, cv::Scalar(0), -1, cv::LINE_AA);
+}
+
+cv::Mat paper_and_jpeg(const cv::Mat& grey8, double sigma, int quality) {
+  cv::Mat f;
+  grey8.convertTo(f, CV_32F, 1.0 / 255);
+  cv::Mat noise(f.size(), CV_32F);
+  cv::RNG rng(7);
+  rng.fill(noise, cv::RNG::NORMAL, 0, sigma);
+  f += noise;
+  cv::Mat n8;
+  f.convertTo(n8, CV_8U, 255);
+  std::vector<uchar> jpeg;
+  cv::imencode(".jpg", n8, jpeg, {cv::IMWRITE_JPEG_QUALITY, quality});
+  return cv::imdecode(jpeg, cv::IMREAD_GRAYSCALE);
 }
 
 NestedParts nested_parts(double s) {

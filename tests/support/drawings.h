@@ -14,6 +14,19 @@ namespace rktest {
 /// Known levels above the object: disc 1, ring 1, inner disc 2, the rectangle's halves 1 and 2.
 cv::Mat nested_drawing(double scale = 1, int line_px = 2);
 
+/// Distance (px) from p to the nearest drawn shape of nested_drawing(scale), and samples every
+/// ~1 px along all of them (for recall).
+double nested_truth_distance(const reliefkit::Vec2& p, double scale = 1);
+std::vector<reliefkit::Vec2> nested_truth_samples(double scale = 1);
+
+/// Adds shading to a drawing as illustrators do: hatching (short parallel strokes `stroke_px` long,
+/// rows 2 x `spacing_px` apart) over the left half of `area`, stippling (dots every `spacing_px`)
+/// over its right half; neither must become curves.
+void add_shading(cv::Mat& img, cv::Rect area, double stroke_px = 8, double spacing_px = 6);
+
+/// Paper texture (Gaussian noise, `sigma` of the white level) and JPEG compression at `quality`.
+cv::Mat paper_and_jpeg(const cv::Mat& grey8, double sigma, int quality);
+
 /// Points (image px) inside each known part of nested_drawing(scale): object, disc, ring, inner
 /// disc, left and right half of the rectangle.
 struct NestedParts {

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 
 #include "reliefkit/line_drawing.h"
 
@@ -96,4 +97,60 @@ TEST(LineDrawing, BadImagesAreRefused) {
   LineDetectionParams p;
   p.sigma = 0;
   EXPECT_THROW(extract_drawing_curves(cv::Mat(10, 10, CV_8UC1, cv::Scalar(255)), p), InputError);
+}
+
+#include "drawings.h"
+
+// The nested test drawing (six shapes, touching curves, a junction of three) with hatching and
+// stippling inside the object, paper noise and JPEG artefacts: the shapes' curves are found
+// (recall), the shading is not (precision), and the six strokes come out as six curves.
+TEST(LineDrawing, NestedDrawingWithShadingNoiseAndJpeg) {
+  cv::Mat img = rktest::nested_drawing();
+  rktest::add_shading(img, cv::Rect(250, 60, 110, 100));  // between the disc and the ring
+  for (const auto& [name, im] : {std::pair{"shaded", img}, std::pair{"shaded + noise 8 % + JPEG q40", rktest::paper_and_jpeg(img, 0.08, 40)}}) {
+    const DrawingCurves d = extract_drawing_curves(im);
+    long good = 0, n = 0;
+    for (const auto& c : d.curves)
+      for (const auto& p : c) good += rktest::nested_truth_distance(p) <= 2.0, ++n;
+    const auto truth = rktest::nested_truth_samples();
+    long hit = 0;
+    for (const auto& q : truth) {
+      bool covered = false;
+      for (const auto& c : d.curves) {
+        for (const auto& p : c)
+          if ((p - q).squaredNorm() <= 4.0) {
+            covered = true;
+            break;
+          }
+        if (covered) break;
+      }
+      hit += covered;
+    }
+    const double recall = double(hit) / truth.size(), precision = n ? double(good) / n : 0;
+    std::printf("[line drawing, nested %s] %zu curves (%lld short strokes dropped), recall %.3f precision %.3f within 2 px\n", name,
+                d.curves.size(), d.dropped_short, recall, precision);
+    EXPECT_GE(recall, 0.95) << name;
+    EXPECT_GE(precision, 0.95) << name;
+    EXPECT_LE(d.curves.size(), 12u) << name;  // six strokes; noise may break one in two here and there
+  }
+}
+
+TEST(LineDrawing, DrawingFilesThatCannotBeReadAreNamed) {
+  const std::string dir = testing::TempDir();
+  EXPECT_THROW(read_drawing_image(dir + "/no_such_drawing.png"), InputError);
+  EXPECT_THROW(read_drawing_image(""), InputError);
+  {
+    std::ofstream(dir + "/garbage.png") << "this is not a PNG";
+    EXPECT_THROW(read_drawing_image(dir + "/garbage.png"), InputError);
+    std::ofstream(dir + "/empty.png");
+    EXPECT_THROW(read_drawing_image(dir + "/empty.png"), InputError);
+  }
+  // A huge drawing is read reduced, to at most kMaxDrawingPixels.
+  const cv::Mat huge(8000, 8000, CV_8UC1, cv::Scalar(255));
+  ASSERT_TRUE(cv::imwrite(dir + "/huge.png", huge));
+  double f = 0;
+  const cv::Mat read = read_drawing_image(dir + "/huge.png", &f);
+  EXPECT_LT(f, 1.0);
+  EXPECT_LE(double(read.rows) * read.cols, kMaxDrawingPixels);
+  EXPECT_NEAR(read.cols, 8000 * f, 1.0);
 }
