@@ -379,10 +379,23 @@ DrawingProjection project_drawing(const TriMesh& base, const cv::Rect& extent, V
     a0 = std::min(a0, a), a1 = std::max(a1, a), b0 = std::min(b0, b), b1 = std::max(b1, b);
   }
   if (a0 > a1) throw InputError("No part of the base faces the view direction: the drawing cannot be projected onto it.");
-  // The drawing's longer side along the base's longer projected side; right x up = -view.
+  // The drawing's longer side along the base's longer projected side (when they differ by more
+  // than 10 %; otherwise, upright in the world); right x up = -view (not mirrored).
   const bool wide = extent.width >= extent.height;
   Vec3 right = (a1 - a0 >= b1 - b0) == wide ? e_big : e_mid, up = (a1 - a0 >= b1 - b0) == wide ? e_mid : e_big;
-  if (right.cross(up).dot(-view) < 0) up = -up;
+  // Upright: the drawing's up along the world's +y as far as possible (+z when the view is along y).
+  const Vec3 world_up = std::abs(view.y()) < 0.9 ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
+  if (std::max(a1 - a0, b1 - b0) < 1.1 * std::min(a1 - a0, b1 - b0)) {
+    up = (world_up - world_up.dot(view) * view).normalized();
+    right = up.cross(-view).normalized();
+  }
+  if (std::abs(up.dot(world_up)) >= 0.3) {
+    if (up.dot(world_up) < 0) up = -up;
+    if (right.cross(up).dot(-view) < 0) right = -right;
+  } else {  // the drawing lies sideways on the base: its x towards the world's up
+    if (right.dot(world_up) < 0) right = -right;
+    if (right.cross(up).dot(-view) < 0) up = -up;
+  }
   out.right = right, out.up = up;
   double r0 = 1e300, r1 = -1e300, u0 = 1e300, u1 = -1e300;
   for (int v = 0; v < nv; ++v)
@@ -390,7 +403,7 @@ DrawingProjection project_drawing(const TriMesh& base, const cv::Rect& extent, V
       const double r = proj(base.vertices[v], right), u = proj(base.vertices[v], up);
       r0 = std::min(r0, r), r1 = std::max(r1, r), u0 = std::min(u0, u), u1 = std::max(u1, u);
     }
-  out.pixel_size = std::max((r1 - r0) / extent.width, (u1 - u0) / extent.height);
+  out.pixel_size = std::max((r1 - r0) / (extent.width - 1), (u1 - u0) / (extent.height - 1));
   if (!(out.pixel_size > 0)) throw InputError("The base's part facing the view has no extent across it.");
   const double rc = 0.5 * (r0 + r1), uc = 0.5 * (u0 + u1);
   // Occlusion: the nearest depth per cell of a grid over the projected base (cells of about two
@@ -414,9 +427,12 @@ DrawingProjection project_drawing(const TriMesh& base, const cv::Rect& extent, V
     if (!facing[size_t(v)]) continue;
     const Vec3& p = base.vertices[v];
     if (proj(p, view) > nearest[cell_of(p)] + 3 * h) continue;
-    const double px = extent.x + 0.5 * extent.width + (proj(p, right) - rc) / out.pixel_size;
-    const double py = extent.y + 0.5 * extent.height - (proj(p, up) - uc) / out.pixel_size;
-    if (px < extent.x || py < extent.y || px > extent.x + extent.width - 1 || py > extent.y + extent.height - 1) continue;
+    const double px = extent.x + 0.5 * (extent.width - 1) + (proj(p, right) - rc) / out.pixel_size;
+    const double py = extent.y + 0.5 * (extent.height - 1) - (proj(p, up) - uc) / out.pixel_size;
+    constexpr double kSlack = 1e-6;  // rounding at the fitted extent's edges
+    if (px < extent.x - kSlack || py < extent.y - kSlack || px > extent.x + extent.width - 1 + kSlack ||
+        py > extent.y + extent.height - 1 + kSlack)
+      continue;
     out.pixel[size_t(v)] = Vec2(px, py);
     ++out.covered;
   }

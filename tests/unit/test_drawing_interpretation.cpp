@@ -205,3 +205,124 @@ TEST(DrawingRelief, NestedReliefsReconstructToTheirLevels) {
   EXPECT_GT(scale, 0.5);
   EXPECT_LE(rms, 0.1);
 }
+
+namespace {
+// Heights of the relief r beside the disc's rim of the nested drawing, `dist` px inside and
+// outside it, averaged round the rim (grid vertices within 0.75 px of those radii).
+std::pair<double, double> rim_heights(const TriMesh& grid, const DrawingRelief& r, double dist) {
+  double in = 0, out = 0;
+  int ni = 0, no = 0;
+  for (int v = 0; v < grid.n_vertices(); ++v) {
+    const double rad = (Vec2(grid.vertices[v].x(), -grid.vertices[v].y()) - Vec2(160, 160)).norm();
+    if (std::abs(rad - (70 - dist)) < 0.75) in += r.height[size_t(v)], ++ni;
+    if (std::abs(rad - (70 + dist)) < 0.75) out += r.height[size_t(v)], ++no;
+  }
+  return {ni ? in / ni : 0, no ? out / no : 0};
+}
+}  // namespace
+
+// The profiles across a curve: the built-in smooth step, a free-form (linear) step, a ridge.
+TEST(DrawingRelief, ProfilesShapeTheReliefAcrossTheirCurves) {
+  const DrawingCurves c = extract_drawing_curves(nested_drawing());
+  const DrawingInterpretation d = interpret_drawing(c);
+  const int disc = region_of(d, 160, 160), left = region_of(d, 200, 410), right = region_of(d, 380, 410);
+  const int k_disc = curve_between(d, disc), k_split = curve_between(d, left, right);
+  ASSERT_GE(k_disc, 0);
+  ASSERT_GE(k_split, 0);
+  DrawingReliefParams p;  // step width 4 px, one unit per level
+  const TriMesh grid = drawing_grid(600, 600, 1.0, 1.0);
+  const DrawingRelief smooth = reconstruct_drawing_relief(grid, c, d, p);
+  InterpretationParams ip;
+  CurveOverride linear;
+  linear.curve = k_disc;
+  linear.spans.push_back({0, 1, CurveProfile::Step, {Vec2(-1, 0), Vec2(1, 1)}});
+  CurveOverride ridge;
+  ridge.curve = k_split;
+  ridge.weight = 2;
+  ridge.spans.push_back({0, 1, CurveProfile::Ridge, {}});
+  ip.overrides = {linear, ridge};
+  const DrawingInterpretation e = interpret_drawing(c, ip);
+  const DrawingRelief shaped = reconstruct_drawing_relief(grid, c, e, p);
+  // Half a step width inside the rim: built-in s(0.5) = 0.896 of the step, linear 0.75.
+  const auto [si, so] = rim_heights(grid, smooth, 2.0);
+  const auto [li, lo] = rim_heights(grid, shaped, 2.0);
+  std::printf("[drawing relief, profiles] rim +-2 px: smooth %.3f / %.3f, linear %.3f / %.3f (levels 2 / 1)\n", si, so, li, lo);
+  EXPECT_NEAR(si - 1, 0.896, 0.06);
+  EXPECT_NEAR(so - 1, 0.104, 0.06);
+  EXPECT_NEAR(li - 1, 0.75, 0.06);
+  EXPECT_NEAR(lo - 1, 0.25, 0.06);
+  // An asymmetric free-form shape, all of its rise on the curve's left half (t in [-1, -0.5]):
+  // half a step width away on either side the relief is at the right side's level.
+  InterpretationParams ap;
+  CurveOverride early;
+  early.curve = k_disc;
+  early.spans.push_back({0, 1, CurveProfile::Step, {Vec2(-1, 0), Vec2(-0.5, 1), Vec2(1, 1)}});
+  ap.overrides = {early};
+  const DrawingRelief asym = reconstruct_drawing_relief(grid, c, interpret_drawing(c, ap), p);
+  const auto [ai, ao] = rim_heights(grid, asym, 2.0);
+  const bool disc_on_left = d.sides[size_t(k_disc)][0] == disc;
+  const double right_level = disc_on_left ? 1 : 2;
+  std::printf("[drawing relief, asymmetric shape] disc on the curve's %s; rim +-2 px: %.3f / %.3f (right side's level %.0f)\n",
+              disc_on_left ? "left" : "right", ai, ao, right_level);
+  EXPECT_NEAR(ai, right_level, 0.1);
+  EXPECT_NEAR(ao, right_level, 0.1);
+  // The ridge: both halves at one level, the crest two levels above it, gone a step width away.
+  const int lv = e.region_height[size_t(left)];
+  EXPECT_EQ(lv, e.region_height[size_t(right)]);
+  double crest = 0, beside = 0;
+  int nc = 0, nb = 0;
+  for (int y = 360; y <= 460; y += 2) {
+    crest += shaped.height[size_t(y * 600 + 290)], ++nc;
+    beside += shaped.height[size_t(y * 600 + 290 + 8)], ++nb;
+  }
+  crest /= nc, beside /= nb;
+  std::printf("[drawing relief, ridge] level %d, crest %.3f, 8 px beside %.3f\n", lv, crest, beside);
+  EXPECT_NEAR(crest, lv + 2, 0.25);
+  EXPECT_NEAR(beside, lv, 0.05);
+}
+
+// A drawing projected onto a plane the user moved and turned in space lands where it was drawn,
+// upright; onto a spherical cap, the relief follows the levels over the curved base.
+TEST(DrawingRelief, ProjectionOntoABaseLayer) {
+  const cv::Mat img = nested_drawing();
+  const DrawingCurves c = extract_drawing_curves(img);
+  const DrawingInterpretation d = interpret_drawing(c);
+  const cv::Rect extent(20, 20, 561, 401);  // longer than wide: the base's axes tell the drawing's
+  TriMesh plane = drawing_grid(extent.width, extent.height, 4.0, 1.0, extent.x, extent.y);
+  const std::vector<Vec3> flat = plane.vertices;
+  const Eigen::Matrix3d rot = Eigen::AngleAxisd(0.3, Vec3(0.2, 1, 0.5).normalized()).toRotationMatrix();
+  for (auto& v : plane.vertices) v = 0.01 * (rot * v) + Vec3(5, -3, 2);
+  const DrawingProjection pr = project_drawing(plane, extent);
+  double worst = 0;
+  for (int v = 0; v < plane.n_vertices(); ++v) {
+    const Vec2 want(flat[size_t(v)].x(), -flat[size_t(v)].y());
+    ASSERT_TRUE(std::isfinite(pr.pixel[size_t(v)].x())) << v;
+    worst = std::max(worst, (pr.pixel[size_t(v)] - want).norm());
+  }
+  std::printf("[drawing projection, turned plane] %ld of %d vertices covered, worst pixel error %.3f px, %.4f units/px\n",
+              pr.covered, plane.n_vertices(), worst, pr.pixel_size);
+  EXPECT_EQ(pr.covered, plane.n_vertices());
+  EXPECT_LT(worst, 0.5);
+  EXPECT_NEAR(pr.pixel_size, 0.01, 1e-4);
+  // A spherical cap (radius 3 x the drawing's size) over the drawing: levels on the free surface.
+  const cv::Rect whole = drawing_extent(c, 20);
+  TriMesh cap = drawing_grid(whole.width, whole.height, 2.0, 1.0, whole.x, whole.y);
+  const double R = 3.0 * std::max(whole.width, whole.height);
+  const Vec3 centre(whole.x + 0.5 * whole.width, -(whole.y + 0.5 * whole.height), 0);
+  for (auto& v : cap.vertices) {
+    const Vec3 q = v - centre;
+    v.z() = std::sqrt(R * R - q.x() * q.x() - q.y() * q.y()) - R;
+  }
+  const DrawingProjection pc = project_drawing(cap, whole);
+  DrawingReliefParams p;
+  const DrawingRelief rc = reconstruct_drawing_relief(cap, c, d, p, &pc.pixel);
+  // Its pixel positions are the cap's own (x, -y) up to the fit; levels checked in those.
+  TriMesh as_flat = cap;
+  for (int v = 0; v < cap.n_vertices(); ++v) as_flat.vertices[v] = Vec3(pc.pixel[size_t(v)].x(), -pc.pixel[size_t(v)].y(), 0);
+  const rktest::LevelFit fit = rktest::fit_levels(as_flat, 1.0, rc, d, {5, 5});
+  std::printf("[drawing relief, spherical cap] %d vertices, scale fit %.3f per level, RMS %.3f step; solves %s | %s\n",
+              cap.n_vertices(), fit.scale, fit.rms_steps, rc.laplacian_solve.summary().c_str(), rc.relief_solve.summary().c_str());
+  EXPECT_GT(fit.samples, cap.n_vertices() / 4);
+  EXPECT_NEAR(fit.scale, 1.0, 0.1);
+  EXPECT_LE(fit.rms_steps, 0.1);
+}
