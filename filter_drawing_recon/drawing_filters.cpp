@@ -353,8 +353,8 @@ void apply_relief(FilterCall& call) {
     pl.points = relief_surface(pts, hgt, base_choice == kCylinder ? DrawingBase::Cylinder : DrawingBase::Plane, circumference, front).vertices;
   }
   const QString relief_label = image_label(d, "relief");
-  add_curve_layer(call.doc, image_label(d, "curves"), pl, vcg::Color4b(200, 30, 30, 255));
   add_mesh_layer(call.doc, relief_label, surface, r.height, {{"drawing_level", &level}}, true);
+  add_curve_layer(call.doc, image_label(d, "curves"), pl, vcg::Color4b(200, 30, 30, 255));
   call.log(QString("Relief from Line Drawing: %1 curves, %2 regions (%3 curves not between two regions), levels 0 to %4, "
                    "%5 curves fixed by the interpretation file; base %6, %7 vertices (%8 px apart), step %9 mesh units; "
                    "solves: %10 | %11; %12 s.%13")

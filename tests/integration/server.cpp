@@ -53,6 +53,16 @@ std::string mlx_filter(const std::string& name, const std::vector<std::string>& 
   return s + " </filter>\n";
 }
 
+std::string param_file(const std::string& name, const std::string& path) {
+  return "<Param type=\"RichOpenFile\" name=\"" + name + "\" value=\"" + path + "\" exts_cardinality=\"0\"/>";
+}
+
+std::string param_point(const std::string& name, double x, double y, double z) {
+  std::ostringstream s;
+  s << "<Param type=\"RichPoint3f\" name=\"" << name << "\" x=\"" << x << "\" y=\"" << y << "\" z=\"" << z << "\"/>";
+  return s.str();
+}
+
 std::string mlx_script(const std::vector<std::string>& filters) {
   std::string s = "<!DOCTYPE FilterScript>\n<FilterScript>\n";
   for (const auto& f : filters) s += f;

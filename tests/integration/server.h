@@ -30,6 +30,9 @@ std::string param_float(const std::string& name, double value);
 std::string param_string(const std::string& name, const std::string& value);
 std::string param_bool(const std::string& name, bool value);
 std::string param_int(const std::string& name, int value);
+/// A file name parameter (RichOpenFile), as MeshLab writes it.
+std::string param_file(const std::string& name, const std::string& path);
+std::string param_point(const std::string& name, double x, double y, double z);
 void write_text(const std::string& path, const std::string& text);
 
 /// Writes `mesh` as <dir>/in.ply and the filters as <dir>/s.mlx in a fresh test directory
