@@ -20,6 +20,9 @@ struct DrawingReliefParams {
   double margin = 4;          // w, px: the half-width of a step's profile
   double step_height = 1;     // mesh units per level
   double pixel_size = 1;      // mesh units per pixel (image x right, y down -> mesh x right, y up)
+  /// Auto: conjugate gradients started from the interpretation's levels (the thesis' speed-up),
+  /// CHOLMOD when they do not converge; Direct: CHOLMOD at once (the benchmark's comparison).
+  SolverMethod solver = SolverMethod::Auto;
   void validate() const;
 };
 
