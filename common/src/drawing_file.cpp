@@ -74,11 +74,19 @@ std::string interpretation_to_json(const std::string& drawing_name, const Drawin
     }
     curves.push_back(e);
   }
-  j["curves"] = curves;
   json regions = json::array();
   for (int r = 0; r < int(di.region_height.size()); ++r) regions.push_back({{"id", r}, {"level", di.region_height[size_t(r)]}});
-  j["regions"] = regions;
-  return j.dump(1) + "\n";
+  // One curve (region) per line, so that a curve's entry reads and edits as one line.
+  std::string out = "{\n";
+  for (auto it = j.begin(); it != j.end(); ++it) out += " " + json(it.key()).dump() + ": " + it.value().dump() + ",\n";
+  auto list = [&](const char* name, const json& items, bool last) {
+    out += std::string(" \"") + name + "\": [\n";
+    for (size_t i = 0; i < items.size(); ++i) out += "  " + items[i].dump(-1, ' ', false) + (i + 1 < items.size() ? ",\n" : "\n");
+    out += std::string(" ]") + (last ? "\n" : ",\n");
+  };
+  list("curves", curves, false);
+  list("regions", regions, true);
+  return out + "}\n";
 }
 
 namespace {

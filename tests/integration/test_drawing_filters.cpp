@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -306,4 +307,71 @@ TEST(DrawingFilters, BadInputStopsWithAClearMessage) {
   // Nothing written beside the drawings either.
   EXPECT_FALSE(std::filesystem::exists(dir + "/sectors.interpretation.json"));
   EXPECT_FALSE(std::filesystem::exists(dir + "/nested.interpretation.json"));
+}
+
+namespace {
+// An example script with its relative paths (examples/...) made absolute.
+std::string example(const std::string& name) {
+  std::ifstream f(std::string(RELIEFKIT_SOURCE_DIR) + "/examples/" + name);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  std::string s = ss.str();
+  for (size_t at = 0; (at = s.find("value=\"examples/", at)) != std::string::npos;)
+    s.replace(at, 7, "value=\"" + std::string(RELIEFKIT_SOURCE_DIR) + "/"), at += 8;
+  return s;
+}
+}  // namespace
+
+// The example scripts run as written (every parameter listed), the sunk-disc interpretation file
+// of examples/data still names this extraction's curves, and the relief on a base layer scales
+// with the base: the same script for a base in millimetres and in metres.
+TEST(DrawingFilters, ExampleScriptsRunAndFollowTheBasesUnit) {
+  const std::string dir = temp_dir("drawing_examples");
+  const std::string png = dir + "/nested_drawing.png";
+  std::filesystem::copy_file(std::string(RELIEFKIT_SOURCE_DIR) + "/examples/data/nested_drawing.png", png);
+  auto local = [&](std::string s) {  // the drawing in the test's folder (its interpretation file is written there)
+    const std::string from = std::string(RELIEFKIT_SOURCE_DIR) + "/examples/data/nested_drawing.png";
+    for (size_t at = 0; (at = s.find(from, at)) != std::string::npos;) s.replace(at, from.size(), png), at += png.size();
+    return s;
+  };
+  write_text(dir + "/curves.mlx", local(example("drawing_curves.mlx")));
+  ServerRun run = run_meshlabserver({"-o", dir + "/curves.obj", "-s", dir + "/curves.mlx"});
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(logged_curves(run.output, "Line Drawing to Curves"), 6) << run.output;
+
+  std::string relief = local(example("drawing_relief.mlx"));
+  const std::string sunk = std::string(RELIEFKIT_SOURCE_DIR) + "/examples/data/nested_drawing.sunk.json";
+  relief.replace(relief.find("name=\"interpretation\" value=\"\""), 30, "name=\"interpretation\" value=\"" + sunk + "\"");
+  write_text(dir + "/relief.mlx", relief);
+  run = run_meshlabserver({"-o", dir + "/sunk.ply", "-l", "0", "-m", "vq", "-s", dir + "/relief.mlx"});
+  ASSERT_EQ(run.status, 0) << run.output;
+  const MeshFile f = read_mesh(dir + "/sunk.ply");
+  const double px = 25.4 / 300, step = logged_step(run.output);
+  const NestedParts parts = nested_parts();
+  const double ring = height_near(f, parts.ring.x * px, -parts.ring.y * px) / step,
+               inner = height_near(f, parts.inner.x * px, -parts.inner.y * px) / step;
+  std::printf("[drawing examples] sunk.json: ring %.3f, inner disc %.3f levels\n", ring, inner);
+  EXPECT_NEAR(ring - inner, 1, 0.05);
+
+  write_text(dir + "/onlayer.mlx", local(example("drawing_on_layer.mlx")));
+  std::map<double, double> top;
+  for (double unit : {1.0, 1000.0}) {
+    reliefkit::TriMesh dome = reliefkit::drawing_grid(800, 600, 2.0, 1.0);
+    for (auto& v : dome.vertices) {
+      const double x = v.x() - 400, y = v.y() + 300, R = 1200;
+      v = unit * Vec3(v.x(), v.y(), std::sqrt(R * R - x * x - y * y) - R);
+    }
+    const std::string base = dir + "/dome" + std::to_string(int(unit)) + ".ply";
+    write_ply(base, dome);
+    run = run_meshlabserver({"-i", base, "-o", dir + "/on" + std::to_string(int(unit)) + ".ply", "-l", "1", "-m", "vq", "-s",
+                             dir + "/onlayer.mlx"});
+    ASSERT_EQ(run.status, 0) << run.output;
+    const MeshFile on = read_mesh(dir + "/on" + std::to_string(int(unit)) + ".ply");
+    double hi = 0;
+    for (double h : on.vertex_props.at("quality")) hi = std::max(hi, h);
+    top[unit] = hi;
+  }
+  std::printf("[drawing examples] on a dome: highest relief %.4g (mm) / %.4g (m x 1000)\n", top[1.0], top[1000.0]);
+  EXPECT_GT(top[1.0], 0);
+  EXPECT_NEAR(top[1000.0] / top[1.0], 1000, 1);
 }

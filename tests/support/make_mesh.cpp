@@ -3,11 +3,17 @@
 //   rk_make_mesh relief-torus FACES out.ply      (jittered torus with bumps, ~FACES faces)
 //   rk_make_mesh sphere r levels jitter out.ply
 //   rk_make_mesh convert in.obj|in.ply out.ply   (e.g. OBJ files MeshLab 2020.09's importer aborts on)
+//   rk_make_mesh nested-drawing out.png          (the synthetic line drawing of the drawing tests)
+//   rk_make_mesh dome W H cell out.ply           (a smooth dome W x H, cell apart: a base for drawings)
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
+#include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+
+#include "drawings.h"
 #include "mesh_files.h"
 #include "shapes.h"
 
@@ -24,11 +30,22 @@ int main(int argc, char** argv) {
       auto m = rktest::relief_torus(std::atol(argv[2]));
       rktest::write_ply(argv[3], m);
       std::printf("faces %d mean_edge %.9g\n", m.n_faces(), reliefkit::edge_length_stats(m).mean);
+    } else if (kind == "nested-drawing" && argc == 3) {
+      if (!cv::imwrite(argv[2], rktest::nested_drawing())) throw std::runtime_error("cannot write the drawing");
+    } else if (kind == "dome" && argc == 6) {
+      const int w = std::atoi(argv[2]), h = std::atoi(argv[3]);
+      reliefkit::TriMesh m = reliefkit::drawing_grid(w, h, std::atof(argv[4]), 1.0);
+      const double R = 1.5 * std::max(w, h);
+      for (auto& v : m.vertices) {
+        const double x = v.x() - 0.5 * (w - 1), y = v.y() + 0.5 * (h - 1);
+        v.z() = std::sqrt(R * R - x * x - y * y) - R;
+      }
+      rktest::write_ply(argv[5], m);
     } else if (kind == "sphere" && argc == 6) {
       rktest::write_ply(argv[5], rktest::sphere(std::atof(argv[2]), std::atoi(argv[3]), std::atof(argv[4])));
     } else {
       std::fprintf(stderr, "usage: rk_make_mesh torus R r nu nv jitter seed out.ply | relief-torus FACES out.ply | "
-                           "sphere r levels jitter out.ply\n");
+                           "sphere r levels jitter out.ply | nested-drawing out.png | dome W H cell out.ply\n");
       return 2;
     }
   } catch (const std::exception& e) {
