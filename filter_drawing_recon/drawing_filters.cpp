@@ -219,9 +219,9 @@ void apply_relief(FilterCall& call) {
   DrawingProjection proj;
   const double circumference = d.image.cols * d.pixel_mm, front = (area.x + 0.5 * area.width) * d.pixel_mm;
   if (base_choice == kCurrent) {
-    if (call.current == nullptr || call.current->cm.fn == 0)
-      throw InputError("Base \"Current layer\" needs a mesh layer with faces: open the base mesh first, or choose the "
-                       "Plane or Cylinder base.");
+    if (call.current == nullptr)
+      throw InputError("Base \"Current layer\" needs a mesh layer: open the base mesh first, or choose the Plane or "
+                       "Cylinder base.");
     const vcg::Point3f vd = call.params.getPoint3m("view");
     const Vec3 view(vd[0], vd[1], vd[2]);
     if (!std::isfinite(view.norm())) throw InputError("View direction: the numbers must be finite (0 0 0 for automatic).");

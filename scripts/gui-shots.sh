@@ -6,6 +6,7 @@
 #   click X Y        left click at screen position X Y (the screen is 1280x900, MeshLab maximised)
 #   dclick X Y       double click
 #   wheel X Y N      N steps of the mouse wheel at X Y (N > 0 zooms in, N < 0 out)
+#   drag X1 Y1 X2 Y2 left-button drag (in the view: turns the trackball)
 #   key KEYS         xdotool key names, e.g. "Return" or "ctrl+a"
 #   type TEXT        types TEXT into the focused widget
 #   sleep S          waits S seconds
@@ -31,6 +32,9 @@ xvfb-run -a -s "-screen 0 1280x900x24" bash -c '
       dclick) xdotool mousemove "$a" "$b" click --repeat 2 1 ;;
       wheel) read -r x y n <<<"$a $b"; btn=5; [ "${n:-1}" -lt 0 ] && btn=4 && n=$((-n))
              xdotool mousemove "$x" "$y" click --repeat "${n:-1}" --delay 300 $btn ;;
+      drag) read -r x1 y1 x2 y2 <<<"$a $b"
+            xdotool mousemove "$x1" "$y1" mousedown 1 sleep 0.3 mousemove "$(( (x1 + x2) / 2 ))" "$(( (y1 + y2) / 2 ))" \
+              sleep 0.3 mousemove "$x2" "$y2" sleep 0.3 mouseup 1 ;;
       key) xdotool key --delay 200 $a $b ;;
       type) xdotool type --delay 50 "$a${b:+ $b}" ;;
       sleep) sleep "$a" ;;

@@ -10,6 +10,7 @@
 #include <queue>
 #include <numeric>
 #include <set>
+#include <tuple>
 
 #include "reliefkit/scale.h"
 
@@ -103,8 +104,8 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
   // Region areas, and which regions touch the image's border (the paper around the object).
   const int nr = out.region_count;
   std::vector<char> small(size_t(nr), 0), border(size_t(nr), 0);
+  std::vector<long> area(size_t(nr), 0);
   {
-    std::vector<long> area(size_t(nr), 0);
     for (int y = 0; y < labels.rows; ++y) {
       const int* row = labels.ptr<int>(y);
       for (int x = 0; x < labels.cols; ++x)
@@ -215,19 +216,22 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
     }
     start_from(best);
   }
-  // A total order respecting the fixed directions (Kahn), nearest the base first.
+  // A total order respecting the fixed directions (Kahn): nearest the base first; among regions as
+  // near, the larger first, so that where two neighbours are as near the ground (a tool's body and
+  // the small platform drawn at its top) the small one is the detail standing on the large one.
   std::vector<int> order, rank(size_t(nr), -1), in = fixed_in;
-  using Item = std::pair<int, int>;  // (distance from the base, region)
+  using Item = std::tuple<int, long, int>;  // (distance from the base, -area, region)
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> ready;
+  auto item = [&](int r) { return Item{std::max(0, dist[size_t(r)]), -area[size_t(r)], r}; };
   for (int r = 0; r < nr; ++r)
-    if (in[size_t(r)] == 0) ready.push({std::max(0, dist[size_t(r)]), r});
+    if (in[size_t(r)] == 0) ready.push(item(r));
   while (!ready.empty()) {
-    const int u = ready.top().second;
+    const int u = std::get<2>(ready.top());
     ready.pop();
     rank[size_t(u)] = int(order.size());
     order.push_back(u);
     for (int v : lower_than[size_t(u)])
-      if (--in[size_t(v)] == 0) ready.push({std::max(0, dist[size_t(v)]), v});
+      if (--in[size_t(v)] == 0) ready.push(item(v));
   }
   if (int(order.size()) < nr)
     throw InputError("The fixed step directions contradict each other: following them leads round a loop back to "

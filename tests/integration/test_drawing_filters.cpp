@@ -14,6 +14,7 @@
 #include <regex>
 #include <sstream>
 
+#include "bad_input.h"
 #include "drawings.h"
 #include "mesh_files.h"
 #include "server.h"
@@ -374,4 +375,15 @@ TEST(DrawingFilters, ExampleScriptsRunAndFollowTheBasesUnit) {
   std::printf("[drawing examples] on a dome: highest relief %.4g (mm) / %.4g (m x 1000)\n", top[1.0], top[1000.0]);
   EXPECT_GT(top[1.0], 0);
   EXPECT_NEAR(top[1000.0] / top[1.0], 1000, 1);
+}
+
+// The current layer as the base: the damaged meshes every ReliefKit filter is tested on.
+TEST(DrawingFilters, BadBaseLayersAreHandled) {
+  const std::string dir = temp_dir("drawing_bad_base_png");
+  const std::string png = write_nested(dir);
+  ReliefArgs a;
+  a.base = 2;
+  expect_bad_input_handled([&](const std::string& name, const reliefkit::TriMesh& mesh) {
+    return run_filters("drawing_bad_base_" + name, mesh, {relief_filter(png, a)}, {"-o", "out.ply", "-l", "1"});
+  });
 }

@@ -1,0 +1,126 @@
+#!/usr/bin/env bash
+# Re-makes the pictures of docs/drawing_recon.md in the real MeshLab GUI under a virtual display:
+# the pipeline on a real drawing (drawing, curves, levels, relief), the three real drawings of
+# ../shared/data/drawings, the bases (cylinder, a dome as the current layer), an edited
+# interpretation (a disc sunk instead of raised), and the filter dialog and its result in the GUI.
+# Output: docs/img/drawing_*.png, docs/img/gui_drawing_*.png (working files in build/drawing-pictures).
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+out="$here/build/drawing-pictures"; rm -rf "$out"; mkdir -p "$out"
+img="$here/docs/img"
+server="$here/scripts/meshlabserver"
+shared="$here/../shared/data/drawings"
+
+# The example script with another drawing, base, line scale and step width (and interpretation file).
+script() {  # script(drawing, base, sigma, margin, [interpretation]) > file
+  sed -e "s#value=\"examples/data/nested_drawing.png\"#value=\"$1\"#" -e "s#name=\"base\" value=\"0\"#name=\"base\" value=\"$2\"#" \
+      -e "s#name=\"sigma\" value=\"2\"#name=\"sigma\" value=\"$3\"#" -e "s#name=\"margin\" value=\"4\"#name=\"margin\" value=\"$4\"#" \
+      -e "s#name=\"interpretation\" value=\"\"#name=\"interpretation\" value=\"${5:-}\"#" "$here/examples/drawing_relief.mlx"
+}
+# Colours a relief by its height (vertex quality) from 0 to the top level its log reports.
+colorize() {  # colorize(relief log) > mlx
+  local top step
+  top=$(grep -o 'levels 0 to [0-9]*' "$1" | head -1 | grep -o '[0-9]*$')
+  step=$(grep -o 'step [0-9.e+-]* mesh units' "$1" | head -1 | cut -d' ' -f2)
+  printf '<!DOCTYPE FilterScript>\n<FilterScript>\n <filter name="Colorize by vertex Quality">\n'
+  printf '  <Param type="RichFloat" name="minVal" value="0"/>\n'
+  printf '  <Param type="RichFloat" name="maxVal" value="%s"/>\n' "$(python3 -c "print($top * $step)")"
+  printf '  <Param type="RichDynamicFloat" name="perc" value="0" min="0" max="100"/>\n'
+  printf '  <Param type="RichBool" name="zeroSym" value="false"/>\n </filter>\n</FilterScript>\n'
+}
+# A screenshot of MeshLab showing FILES, turned by dragging (dy px up) and zoomed (wheel steps).
+view() {  # view(out.png, dy, wheel, files...)
+  local shot="$1" dy="$2" wh="$3"; shift 3
+  { echo "sleep 2"; echo "click 231 10"; echo "sleep 1"; echo "click 290 113"; echo "sleep 1"; [ "$dy" != 0 ] && echo "drag 430 560 430 $((560 - dy))"; [ "$wh" != 0 ] && echo "wheel 430 420 $wh"
+    echo "sleep 4"; echo "shot $shot"; } >"$out/view.txt"
+  "$here/scripts/gui-shots.sh" "$out/view.txt" -- "$@" >/dev/null
+  convert "$shot" -crop 760x660+40+100 +repage "$shot"
+}
+label() { convert "$1" -gravity north -background white -splice 0x34 -font DejaVu-Sans -pointsize 22 -annotate +0+4 "$2" "$1"; }
+
+# 1. The pipeline on the Qesem cave drawing.
+cp "$shared/lithic_qesem_cave.png" "$out/qesem.png"
+script "$out/qesem.png" 0 2 4 >"$out/qesem.mlx"
+"$server" -s "$out/qesem.mlx" -o "$out/qesem_relief.ply" -l 0 -m vq -o "$out/qesem_curves.obj" -l 1 >"$out/qesem.log" 2>&1
+colorize "$out/qesem.log" >"$out/colorize.mlx"
+"$server" -i "$out/qesem_relief.ply" -s "$out/colorize.mlx" -o "$out/qesem_levels.ply" -m vc vq >"$out/qesem_levels.log" 2>&1
+convert "$out/qesem.png" -background white -alpha remove -alpha off -trim -bordercolor white -border 40 -resize 620x620 \
+  -gravity center -extent 760x660 "$out/p1.png"
+view "$out/p2.png" 0 0 "$out/qesem_curves.obj"
+view "$out/p3.png" 0 0 "$out/qesem_levels.ply"
+view "$out/p4.png" 220 2 "$out/qesem_relief.ply"
+label "$out/p1.png" "1. drawing"; label "$out/p2.png" "2. Line Drawing to Curves"
+label "$out/p3.png" "3. levels (height colours)"; label "$out/p4.png" "4. relief"
+convert "$out/p1.png" "$out/p2.png" "$out/p3.png" "$out/p4.png" +append -resize 1600x "$img/drawing_pipeline.png"
+
+# 2. The three real drawings: drawing | relief coloured by height (the cuneiform tablet is small:
+# line scale 1 px).
+rows=()
+for d in lithic_replica_1:2:4 lithic_qesem_cave:2:4 cuneiform_P102630_obverse:1:2; do
+  IFS=: read -r name sigma margin <<<"$d"
+  cp "$shared/$name.png" "$out/$name.png"
+  script "$out/$name.png" 0 "$sigma" "$margin" >"$out/$name.mlx"
+  "$server" -s "$out/$name.mlx" -o "$out/${name}_relief.ply" -l 0 -m vq >"$out/$name.log" 2>&1
+  convert "$out/$name.png" -background white -alpha remove -alpha off -trim -bordercolor white -border 20 -resize 600x600 \
+    -gravity center -extent 760x660 "$out/${name}_d.png"
+  colorize "$out/$name.log" >"$out/${name}_colorize.mlx"
+  "$server" -i "$out/${name}_relief.ply" -s "$out/${name}_colorize.mlx" -o "$out/${name}_levels.ply" -m vc vq >/dev/null 2>&1
+  view "$out/${name}_r.png" 220 1 "$out/${name}_levels.ply"
+  convert "$out/${name}_d.png" "$out/${name}_r.png" +append "$out/${name}_row.png"
+  rows+=("$out/${name}_row.png")
+done
+convert "${rows[@]}" -append -resize 1100x "$img/drawing_real.png"
+
+# 3. Bases: the Qesem drawing rolled round a cylinder; the nested drawing on a dome (current layer).
+script "$out/qesem.png" 1 2 4 >"$out/cyl.mlx"
+"$server" -s "$out/cyl.mlx" -o "$out/cyl.ply" -l 0 -m vq >"$out/cyl.log" 2>&1
+cp "$here/examples/data/nested_drawing.png" "$out/nested.png"
+"$here/build/tests/rk_make_mesh" dome 800 600 2 "$out/dome.ply"
+script "$out/nested.png" 2 2 4 >"$out/dome.mlx"
+"$server" -i "$out/dome.ply" -s "$out/dome.mlx" -o "$out/dome_relief.ply" -l 1 -m vq >"$out/dome.log" 2>&1
+view "$out/b1.png" 0 2 "$out/cyl.ply"
+view "$out/b2.png" 200 0 "$out/dome_relief.ply"
+label "$out/b1.png" "Cylinder"; label "$out/b2.png" "Current layer (a dome)"
+convert "$out/b1.png" "$out/b2.png" +append -resize 1200x "$img/drawing_bases.png"
+
+# 4. The interpretation file edited: the inner disc sunk (examples/data/nested_drawing.sunk.json).
+script "$out/nested.png" 0 2 4 >"$out/auto.mlx"
+script "$out/nested.png" 0 2 4 "$here/examples/data/nested_drawing.sunk.json" >"$out/sunk.mlx"
+"$server" -s "$out/auto.mlx" -o "$out/auto.ply" -l 0 -m vq >"$out/auto.log" 2>&1
+"$server" -s "$out/sunk.mlx" -o "$out/sunk.ply" -l 0 -m vq >"$out/sunk.log" 2>&1
+view "$out/s1.png" 200 2 "$out/auto.ply"
+view "$out/s2.png" 200 2 "$out/sunk.ply"
+label "$out/s1.png" "automatic"; label "$out/s2.png" "curve 4: direction right-lower"
+convert "$out/s1.png" "$out/s2.png" +append -resize 1200x "$img/drawing_sunk.png"
+
+# 5. The GUI: Filters search > Relief from Line Drawing, the file chosen with "..." (MeshLab
+# 2020.09 reads a file parameter only from its file dialog), Apply, the dialog closed, the view turned.
+cat >"$out/gui.txt" <<EOF
+click 1258 46
+sleep 1
+type Relief from Line
+sleep 2
+click 860 99
+sleep 3
+click 566 357
+sleep 3
+type $out/qesem.png
+key Return
+sleep 2
+shot $out/gui_dialog.png
+click 466 719
+sleep 20
+click 160 719
+sleep 2
+click 231 10
+sleep 1
+click 290 113
+sleep 2
+drag 430 560 430 410
+sleep 4
+shot $out/gui_applied.png
+EOF
+"$here/scripts/gui-shots.sh" "$out/gui.txt" -- >/dev/null
+convert "$out/gui_dialog.png" -crop 625x740+0+0 +repage "$img/gui_drawing_relief_dialog.png"
+convert "$out/gui_applied.png" -resize 75% "$img/gui_drawing_relief_applied.png"
+echo "pictures written to $img"
