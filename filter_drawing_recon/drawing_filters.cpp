@@ -136,13 +136,25 @@ QString image_label(const Drawing& d, const char* what) { return QFileInfo(d.pat
 
 // ---- Line Drawing to Curves ----
 
-void curves_parameters(MeshModel&, RichParameterList& par) { drawing_parameters(par); }
+void curves_parameters(MeshModel&, RichParameterList& par) {
+  drawing_parameters(par);
+  par.addParam(RichFloat("margins", 0.f, "Margins (px, 0: none)",
+                         "When positive, a second layer \"<image> – margins\" shows each curve's margins: the curve "
+                         "offset by this many pixels to either side (the Step width of Relief from Line Drawing is "
+                         "4 px), so that closely drawn curves whose steps will meet can be seen."));
+}
 
 void apply_curves(FilterCall& call) {
   const auto t0 = std::chrono::steady_clock::now();
   const Drawing d = read_drawing(call);
+  const double margins = read_float(call, "margins", "Margins (px, 0: none)", 0, 1000);
   const QString label = image_label(d, "curves");
   add_curve_layer(call.doc, label, curves_in_mesh_units(d.curves, d.pixel_mm), vcg::Color4b(20, 20, 20, 255));
+  if (margins > 0) {
+    DrawingCurves m;
+    m.curves = margin_lines(d.curves, margins);
+    add_curve_layer(call.doc, image_label(d, "margins"), curves_in_mesh_units(m, d.pixel_mm), vcg::Color4b(40, 90, 220, 255));
+  }
   call.log(QString("Line Drawing to Curves: \"%1\" %2 x %3 px; %4 curves (%5 px of lines, %6 junctions), %7 short strokes "
                    "dropped; layer \"%8\", pixel %9 mm; %10 s.")
                .arg(QFileInfo(d.path).fileName())
@@ -179,8 +191,9 @@ void relief_parameters(MeshModel&, RichParameterList& par) {
                          "Height of one level, as a percentage of the width of the drawn part of the image, so the "
                          "same script suits any DPI and scale."));
   par.addParam(RichFloat("cell", 0.f, "Base resolution (px)",
-                         "Spacing of the base's vertices in pixels of the drawing. 0: automatic, half the step width "
-                         "(so each step is resolved), coarser only when the base would exceed 4 million vertices."));
+                         "Spacing of the base's vertices in pixels of the drawing. 0: automatic: half the step width "
+                         "(each step over four vertices) or a quarter of the narrowest region between curves, if "
+                         "finer; coarser only when the base would exceed 4 million vertices."));
 }
 
 constexpr long kMaxAutoVertices = 4000000;
@@ -257,7 +270,7 @@ void apply_relief(FilterCall& call) {
                  .arg(proj.pixel_size, 0, 'g', 4));
   } else {
     if (cell <= 0) {
-      cell = std::max(0.5, rp.margin / 2);
+      cell = drawing_cell(di, rp.margin);
       const double verts = (area.width / cell + 1) * (area.height / cell + 1);
       if (verts > kMaxAutoVertices) {
         const double c2 = std::sqrt(double(area.width) * area.height / kMaxAutoVertices);

@@ -52,6 +52,36 @@ cv::Rect drawing_extent(const DrawingCurves& dc, double pad) {
   return cv::Rect(a, b, std::max(2, c - a + 1), std::max(2, d - b + 1));
 }
 
+double drawing_cell(const DrawingInterpretation& di, double margin) {
+  double cell = margin / 2;
+  if (di.region_count > 0 && !di.regions.empty()) {
+    const cv::Mat free = di.regions >= 0;
+    cv::Mat dist;
+    cv::distanceTransform(free, dist, cv::DIST_L2, cv::DIST_MASK_5);
+    std::vector<float> widest(size_t(di.region_count), 0.f);
+    for (int y = 0; y < dist.rows; ++y) {
+      const int* lab = di.regions.ptr<int>(y);
+      const float* d = dist.ptr<float>(y);
+      for (int x = 0; x < dist.cols; ++x)
+        if (lab[x] >= 0) widest[size_t(lab[x])] = std::max(widest[size_t(lab[x])], d[x]);
+    }
+    // The regions that take part: those some step borders.
+    std::vector<char> used(size_t(di.region_count), 0);
+    for (size_t k = 0; k < di.sides.size(); ++k)
+      if (k < di.step.size() && di.step[k] != 0)
+        for (int r : di.sides[k])
+          if (r >= 0) used[size_t(r)] = 1;
+    std::vector<float> w;
+    for (int r = 0; r < di.region_count; ++r)
+      if (used[size_t(r)]) w.push_back(2 * widest[size_t(r)]);
+    if (!w.empty()) {
+      std::nth_element(w.begin(), w.begin() + long(w.size() / 100), w.end());
+      cell = std::min(cell, 0.25 * w[w.size() / 100]);
+    }
+  }
+  return std::max(0.5, cell);
+}
+
 TriMesh relief_surface(const TriMesh& grid, const std::vector<double>& height, DrawingBase base, double circumference,
                        double front) {
   TriMesh m = grid;

@@ -30,6 +30,25 @@ double DrawingCurves::total_length() const {
   return len;
 }
 
+std::vector<std::vector<Vec2>> margin_lines(const DrawingCurves& dc, double width) {
+  require_range(width, "Margin width (px)", 0, 1e6);
+  std::vector<std::vector<Vec2>> out;
+  for (const auto& c : dc.curves) {
+    if (c.size() < 2) continue;
+    std::vector<Vec2> left, right;
+    for (size_t i = 0; i < c.size(); ++i) {
+      const Vec2 d = c[std::min(i + 1, c.size() - 1)] - c[i > 0 ? i - 1 : 0];
+      const double len = d.norm();
+      if (!(len > 0)) continue;
+      const Vec2 l(d.y() / len, -d.x() / len);  // left of the direction of travel, image y down
+      left.push_back(c[i] + width * l);
+      right.push_back(c[i] - width * l);
+    }
+    if (left.size() >= 2) out.push_back(std::move(left)), out.push_back(std::move(right));
+  }
+  return out;
+}
+
 cv::Mat read_drawing_image(const std::string& path, double* reduction) {
   if (reduction) *reduction = 1;
   if (path.empty()) throw InputError("No drawing image was given.");

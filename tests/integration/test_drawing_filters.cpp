@@ -31,8 +31,10 @@ std::vector<std::string> drawing_params(const std::string& path, double dpi = 30
   return {param_file("drawing", path), param_float("sigma", sigma), param_float("min_length", 12), param_float("dpi", dpi),
           param_float("scale", scale)};
 }
-std::string curves_filter(const std::string& path, double dpi = 300, double scale = 1, double sigma = 2) {
-  return mlx_filter("Line Drawing to Curves", drawing_params(path, dpi, scale, sigma));
+std::string curves_filter(const std::string& path, double dpi = 300, double scale = 1, double sigma = 2, double margins = 0) {
+  auto p = drawing_params(path, dpi, scale, sigma);
+  p.push_back(param_float("margins", margins));
+  return mlx_filter("Line Drawing to Curves", p);
 }
 struct ReliefArgs {
   std::string interpretation;
@@ -102,7 +104,7 @@ TEST(DrawingFilters, CurvesOfTheNestedDrawingInMillimetres) {
   const std::string dir = temp_dir("drawing_curves");
   const std::string png = write_nested(dir);
   // 254 DPI = 0.1 mm per pixel; a drawing at 1:2: 0.2 mm per pixel on the object.
-  ServerRun run = run_script(dir, {curves_filter(png, 254, 2)}, {"-o", "curves.obj", "-l", "0"});
+  ServerRun run = run_script(dir, {curves_filter(png, 254, 2, 2, 4)}, {"-o", "curves.obj", "-l", "0", "-o", "margins.obj", "-l", "1"});
   ASSERT_FALSE(run.crashed) << run.output;
   ASSERT_EQ(run.status, 0) << run.output;
   const int n = logged_curves(run.output, "Line Drawing to Curves");
@@ -118,6 +120,14 @@ TEST(DrawingFilters, CurvesOfTheNestedDrawingInMillimetres) {
   std::printf("[drawing filters, curves] %d curves, %zu points, worst distance to the drawn shapes %.2f px\n", n,
               f.mesh.vertices.size(), worst);
   EXPECT_LT(worst, 2.0);
+  // The margins: 4 px either side of the shapes (away from corners and junctions, where offsets fold).
+  const MeshFile mg = read_mesh(dir + "/margins.obj");
+  ASSERT_GT(mg.edges.size(), 1000u);
+  long near = 0;
+  for (const Vec3& p : mg.mesh.vertices) near += std::abs(nested_truth_distance(Vec2(p.x() / 0.2, -p.y() / 0.2)) - 4) < 1.0;
+  const double share = double(near) / mg.mesh.vertices.size();
+  std::printf("[drawing filters, margins] %zu points, %.3f of them 4 +- 1 px from the shapes\n", mg.mesh.vertices.size(), share);
+  EXPECT_GT(share, 0.9);
 }
 
 TEST(DrawingFilters, ReliefOfTheNestedDrawingHasItsLevels) {

@@ -69,6 +69,11 @@ TriMesh drawing_grid(int width, int height, double cell, double pixel_size, int 
 /// The part of the drawing worth a relief: the curves' bounding box grown by `pad` px, within the image.
 cv::Rect drawing_extent(const DrawingCurves& curves, double pad);
 
+/// The base's vertex spacing (px) that resolves a drawing: half the step width, and a quarter of
+/// the narrowest region (twice the largest distance from its curves, the 1st percentile over the
+/// regions that take part), never below 0.5 px.
+double drawing_cell(const DrawingInterpretation& interpretation, double margin);
+
 enum class DrawingBase { Plane, Cylinder };
 
 /// The relief as a surface: the flat grid's vertices raised by `height` along +z (Plane), or the

@@ -48,6 +48,10 @@ cv::Mat drawing_grey(const cv::Mat& image);
 
 DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionParams& params = {});
 
+/// The margins of the curves (the thesis' fig. 7.2): each curve offset by `width` px to its left and
+/// to its right (per point, along the normal of the neighbouring segments), two polylines per curve.
+std::vector<std::vector<Vec2>> margin_lines(const DrawingCurves& curves, double width);
+
 /// Largest drawing read at full size (pixels); a larger one is reduced to it (INTER_AREA).
 constexpr double kMaxDrawingPixels = 60e6;
 
