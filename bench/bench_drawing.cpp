@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   rkbench::PeakMemory mem;
   DrawingCurves real;
   {
-    const std::string path = std::string(RELIEFKIT_SHARED_DATA) + "/drawings/lithic_replica_1.png";
+    const std::string path = std::string(RELIEFKIT_DRAWINGS) + "/lithic_replica_1.png";
     const cv::Mat img = cv::imread(path, cv::IMREAD_UNCHANGED);
     if (img.empty()) {
       std::printf("extraction: %s not readable, skipped\n", path.c_str());

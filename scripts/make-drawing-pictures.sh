@@ -9,7 +9,7 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="$here/build/drawing-pictures"; rm -rf "$out"; mkdir -p "$out"
 img="$here/docs/img"
 server="$here/scripts/meshlabserver"
-shared="$here/../shared/data/drawings"
+shared="$here/tests/data/drawings"  # copies of ../shared/data/drawings
 
 # The example script with another drawing, base, line scale and step width (and interpretation file).
 script() {  # script(drawing, base, sigma, margin, [interpretation]) > file

@@ -1,6 +1,6 @@
 // "Line Drawing to Curves" and "Relief from Line Drawing" through the real meshlabserver: the
 // nested synthetic drawing (known shapes and levels), an edited interpretation file, the three
-// bases, the real drawings of ../shared/data/drawings, and bad input.
+// bases, the real drawings (tests/data/drawings: copies of ../shared/data/drawings), and bad input.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -25,7 +25,7 @@ using reliefkit::Vec3;
 
 namespace {
 
-const std::string kShared = std::string(RELIEFKIT_SOURCE_DIR) + "/../shared/data/drawings";
+const std::string kShared = std::string(RELIEFKIT_SOURCE_DIR) + "/tests/data/drawings";  // copies of ../shared/data/drawings
 
 std::vector<std::string> drawing_params(const std::string& path, double dpi = 300, double scale = 1, double sigma = 2) {
   return {param_file("drawing", path), param_float("sigma", sigma), param_float("min_length", 12), param_float("dpi", dpi),
