@@ -38,9 +38,9 @@ const char* kReliefInfo =
     "automatically (the paper around the object is the ground, and shapes drawn inside others rise from them, "
     "one step per line), then a smooth surface is made that steps up or down across every line and is smooth "
     "between them.<br><br>"
-    "<b>Output</b>: a new layer <i>&lt;image&gt; – relief</i> (made current) on a generated base — a plane, or a "
-    "cylinder whose circumference is the drawing's width (a roll-out drawing of a cup or a lamp) — with vertex "
-    "quality = the height over the base and the per-vertex attribute <code>drawing_level</code> (the level "
+    "<b>Output</b>: a new layer <i>&lt;image&gt; – relief</i> (made current) on a plane, on a cylinder whose "
+    "circumference is the drawing's width (a roll-out drawing of a cup or a lamp), or on the current layer (the "
+    "drawing projected onto it), with vertex quality = the height over the base and the per-vertex attribute <code>drawing_level</code> (the level "
     "each part was given); a layer <i>&lt;image&gt; – curves</i> with the lines on the relief; and, beside the "
     "image, the <b>interpretation file</b> <i>&lt;image&gt;.interpretation.json</i>: every curve with its id, ends, "
     "sides and step. To change the result, edit a curve's <code>direction</code> (auto, left-lower, "
@@ -55,6 +55,7 @@ const QStringList kImageExts = {"*.png", "*.jpg", "*.jpeg", "*.tif", "*.tiff", "
 const QStringList kBases = {"Plane", "Cylinder (the drawing's width goes round it)",
                              "Current layer (the drawing projected onto it)"};
 enum BaseChoice { kPlane, kCylinder, kCurrent };
+const QStringList kGrounds = {"The paper around the drawing", "The most connected region (the thesis' heuristic)"};
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -176,6 +177,10 @@ void relief_parameters(MeshModel&, RichParameterList& par) {
   par.addParam(RichOpenFile("interpretation", "", QStringList{"*.json"}, "Interpretation file",
                             "Empty: automatic. Otherwise a JSON interpretation file (as this filter writes beside the "
                             "image, edited): its curves' directions, weights and profiles are kept."));
+  par.addParam(RichEnum("ground", 0, kGrounds, "Ground level",
+                        "Which region is the ground the relief rises from (level 0). The paper around the drawing "
+                        "(regions touching the image's border); or, as in the thesis, the region bordered by most "
+                        "curves — for a drawing of a relief's surface without paper around it."));
   par.addParam(RichEnum("base", 0, kBases, "Base",
                         "The surface the relief stands on: a plane; a cylinder round which the drawing is rolled (its "
                         "width is the circumference); or the current layer (any mesh: a scan of the object, or its "
@@ -202,6 +207,7 @@ void apply_relief(FilterCall& call) {
   const auto t0 = std::chrono::steady_clock::now();
   Drawing d = read_drawing(call);
   const QString interp_path = call.params.getOpenFileName("interpretation").trimmed();
+  const int ground = read_enum(call, "ground", "Ground level", kGrounds.size());
   const int base = read_enum(call, "base", "Base", kBases.size());
   DrawingReliefParams rp;
   rp.margin = read_float(call, "margin", "Step width (px)", 0.5, 1000);
@@ -211,6 +217,7 @@ void apply_relief(FilterCall& call) {
   // Interpretation: automatic, with the user's overrides when a file is given.
   InterpretationParams ip;
   ip.margin = std::max(3.0, 0.75 * rp.margin);
+  ip.paper_is_base = ground == 0;
   if (!interp_path.isEmpty()) {
     QFile f(interp_path);
     if (!f.open(QIODevice::ReadOnly))

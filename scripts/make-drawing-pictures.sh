@@ -102,15 +102,15 @@ type Relief from Line
 sleep 2
 click 860 99
 sleep 3
-click 566 357
+click 585 373
 sleep 3
 type $out/qesem.png
 key Return
 sleep 2
 shot $out/gui_dialog.png
-click 466 719
+click 479 764
 sleep 20
-click 160 719
+click 164 764
 sleep 2
 click 231 10
 sleep 1
@@ -121,6 +121,6 @@ sleep 4
 shot $out/gui_applied.png
 EOF
 "$here/scripts/gui-shots.sh" "$out/gui.txt" -- >/dev/null
-convert "$out/gui_dialog.png" -crop 625x740+0+0 +repage "$img/gui_drawing_relief_dialog.png"
+convert "$out/gui_dialog.png" -crop 645x790+0+0 +repage "$img/gui_drawing_relief_dialog.png"
 convert "$out/gui_applied.png" -resize 75% "$img/gui_drawing_relief_applied.png"
 echo "pictures written to $img"

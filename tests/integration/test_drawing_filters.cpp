@@ -38,6 +38,7 @@ std::string curves_filter(const std::string& path, double dpi = 300, double scal
 }
 struct ReliefArgs {
   std::string interpretation;
+  int ground = 0;
   int base = 0;
   Vec3 view = Vec3::Zero();
   double margin = 4, step = 0.5, cell = 0, dpi = 254, sigma = 2;
@@ -45,6 +46,7 @@ struct ReliefArgs {
 std::string relief_filter(const std::string& path, const ReliefArgs& a = {}) {
   auto p = drawing_params(path, a.dpi, 1, a.sigma);
   p.push_back(param_file("interpretation", a.interpretation));
+  p.push_back(param_enum("ground", a.ground, 2));
   p.push_back(param_enum("base", a.base, 3));
   p.push_back(param_point("view", a.view.x(), a.view.y(), a.view.z()));
   p.push_back(param_float("margin", a.margin));
@@ -159,6 +161,22 @@ TEST(DrawingFilters, ReliefOfTheNestedDrawingHasItsLevels) {
   // The relief's z is its height over the plane.
   for (size_t v = 0; v < f.mesh.vertices.size(); v += 97) EXPECT_NEAR(f.mesh.vertices[v].z(), f.vertex_props.at("quality")[v], 1e-4);
 
+  // The thesis' ground: the region bordered by most curves (the object: 5 of them) is level 0, the
+  // paper around it one step up (the object is then read as a sunken panel).
+  {
+    ReliefArgs t = a;
+    t.ground = 1;
+    ServerRun r2 = run_script(dir, {relief_filter(png, t)}, {"-o", "thesis.ply", "-l", "0", "-m", "vq"});
+    ASSERT_EQ(r2.status, 0) << r2.output;
+    const MeshFile g = read_mesh(dir + "/thesis.ply");
+    const double s2 = logged_step(r2.output);
+    const double object = height_near(g, parts.object.x * 0.1, -parts.object.y * 0.1) / s2,
+                 paper = height_near(g, 1.0, -1.0) / s2, disc = height_near(g, parts.disc.x * 0.1, -parts.disc.y * 0.1) / s2;
+    std::printf("[drawing filters, thesis ground] object %.3f, paper %.3f, disc %.3f\n", object, paper, disc);
+    EXPECT_NEAR(object, 0, 0.05);
+    EXPECT_NEAR(paper, 1, 0.05);
+    EXPECT_NEAR(disc, 1, 0.05);
+  }
   // The user edits the interpretation: the inner disc sunk into the ring (its curve's higher side
   // made the lower one). Then the filter reads it back and keeps the file as it is.
   nlohmann::json j;
