@@ -44,7 +44,7 @@ script "$out/qesem.png" 0 2 4 >"$out/qesem.mlx"
 "$server" -s "$out/qesem.mlx" -o "$out/qesem_relief.ply" -l 0 -m vq -o "$out/qesem_curves.obj" -l 1 >"$out/qesem.log" 2>&1
 colorize "$out/qesem.log" >"$out/colorize.mlx"
 "$server" -i "$out/qesem_relief.ply" -s "$out/colorize.mlx" -o "$out/qesem_levels.ply" -m vc vq >"$out/qesem_levels.log" 2>&1
-convert "$out/qesem.png" -background white -alpha remove -alpha off -trim -bordercolor white -border 40 -resize 620x620 \
+convert "$out/qesem.png" -background white -alpha remove -alpha off -trim +repage -bordercolor white -border 40 -resize 620x620 \
   -gravity center -extent 760x660 "$out/p1.png"
 view "$out/p2.png" 0 0 "$out/qesem_curves.obj"
 view "$out/p3.png" 0 0 "$out/qesem_levels.ply"
@@ -61,7 +61,7 @@ for d in lithic_replica_1:2:4 lithic_qesem_cave:2:4 cuneiform_P102630_obverse:1:
   cp "$shared/$name.png" "$out/$name.png"
   script "$out/$name.png" 0 "$sigma" "$margin" >"$out/$name.mlx"
   "$server" -s "$out/$name.mlx" -o "$out/${name}_relief.ply" -l 0 -m vq >"$out/$name.log" 2>&1
-  convert "$out/$name.png" -background white -alpha remove -alpha off -trim -bordercolor white -border 20 -resize 600x600 \
+  convert "$out/$name.png" -background white -alpha remove -alpha off -trim +repage -bordercolor white -border 20 -resize 600x600 \
     -gravity center -extent 760x660 "$out/${name}_d.png"
   colorize "$out/$name.log" >"$out/${name}_colorize.mlx"
   "$server" -i "$out/${name}_relief.ply" -s "$out/${name}_colorize.mlx" -o "$out/${name}_levels.ply" -m vc vq >/dev/null 2>&1
