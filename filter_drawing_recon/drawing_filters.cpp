@@ -237,6 +237,12 @@ void apply_relief(FilterCall& call) {
   DrawingRelief r;
   std::vector<double> level;
   DrawingProjection proj;
+  // The level of the region at a drawing pixel (-1 on a curve or outside the image).
+  auto level_at = [&](const Vec2& q) {
+    const int x = int(std::lround(q.x())), y = int(std::lround(q.y()));
+    const int reg = (x >= 0 && y >= 0 && x < di.regions.cols && y < di.regions.rows) ? di.regions.at<int>(y, x) : -1;
+    return reg >= 0 ? double(di.region_height[size_t(reg)]) : -1.0;
+  };
   const double circumference = d.image.cols * d.pixel_mm, front = (area.x + 0.5 * area.width) * d.pixel_mm;
   if (base_choice == kCurrent) {
     if (call.current == nullptr)
@@ -261,13 +267,8 @@ void apply_relief(FilterCall& call) {
     surface = displace_along_normals(bv.mesh, r.height);
     grid = bv.mesh;
     level.assign(size_t(grid.n_vertices()), -1);
-    for (int v = 0; v < grid.n_vertices(); ++v) {
-      const Vec2 q = proj.pixel[size_t(v)];
-      if (!std::isfinite(q.x())) continue;
-      const int x = int(std::lround(q.x())), y = int(std::lround(q.y()));
-      const int reg = (x >= 0 && y >= 0 && x < di.regions.cols && y < di.regions.rows) ? di.regions.at<int>(y, x) : -1;
-      level[size_t(v)] = reg >= 0 ? di.region_height[size_t(reg)] : -1;
-    }
+    for (int v = 0; v < grid.n_vertices(); ++v)
+      if (std::isfinite(proj.pixel[size_t(v)].x())) level[size_t(v)] = level_at(proj.pixel[size_t(v)]);
     call.log(QString("Drawing projected along (%1, %2, %3) onto %4 of the layer's %5 vertices, %6 mesh units per pixel.")
                  .arg(proj.view.x(), 0, 'f', 3)
                  .arg(proj.view.y(), 0, 'f', 3)
@@ -296,11 +297,8 @@ void apply_relief(FilterCall& call) {
     r = reconstruct_drawing_relief(grid, d.curves, di, rp);
     surface = relief_surface(grid, r.height, base_choice == kCylinder ? DrawingBase::Cylinder : DrawingBase::Plane, circumference, front);
     level.assign(size_t(grid.n_vertices()), 0);
-    for (int v = 0; v < grid.n_vertices(); ++v) {
-      const int x = int(std::lround(grid.vertices[v].x() / d.pixel_mm)), y = int(std::lround(-grid.vertices[v].y() / d.pixel_mm));
-      const int reg = (x >= 0 && y >= 0 && x < di.regions.cols && y < di.regions.rows) ? di.regions.at<int>(y, x) : -1;
-      level[size_t(v)] = reg >= 0 ? di.region_height[size_t(reg)] : -1;
-    }
+    for (int v = 0; v < grid.n_vertices(); ++v)
+      level[size_t(v)] = level_at(Vec2(grid.vertices[v].x() / d.pixel_mm, -grid.vertices[v].y() / d.pixel_mm));
   }
 
   // The interpretation file beside the image (only when none was given: the user's file stays as written).

@@ -205,8 +205,10 @@ DrawingRelief reconstruct_drawing_relief(const TriMesh& base, const DrawingCurve
   }
   cv::Mat dist, label;
   cv::distanceTransform(ink, dist, label, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
-  std::vector<int> seg_of_label(size_t(dc.width) * dc.height + 2, -1);
-  std::vector<cv::Point> pixel_of_label(size_t(dc.width) * dc.height + 2);
+  // DIST_LABEL_PIXEL numbers the ink pixels 1..n: one entry per ink pixel, not per image pixel.
+  const size_t n_ink = size_t(dc.width) * dc.height - size_t(cv::countNonZero(ink));
+  std::vector<int> seg_of_label(n_ink + 1, -1);
+  std::vector<cv::Point> pixel_of_label(n_ink + 1);
   for (int y = 0; y < dc.height; ++y)
     for (int x = 0; x < dc.width; ++x)
       if (ink.at<uchar>(y, x) == 0) {
