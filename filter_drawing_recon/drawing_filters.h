@@ -1,5 +1,5 @@
-// "Line Drawing to Curves", "Relief from Line Drawing": MeshLab adapters of reliefkit/line_drawing.h,
-// drawing_interpretation.h, drawing_relief.h and drawing_file.h.
+// "Line Drawing to Curves", "Relief from Line Drawing", "Base from Drawing Silhouette": MeshLab adapters of
+// reliefkit/line_drawing.h, drawing_interpretation.h, drawing_relief.h, drawing_file.h and base_library.h.
 #pragma once
 
 #include "rk_plugin.h"
@@ -7,4 +7,5 @@
 namespace reliefkit::ml {
 FilterSpec drawing_curves_filter(int id);
 FilterSpec drawing_relief_filter(int id);
+FilterSpec base_from_silhouette_filter(int id);  // base_filter.cpp
 }  // namespace reliefkit::ml

@@ -5,8 +5,9 @@
 using namespace reliefkit::ml;
 
 namespace {
-enum FilterId { DRAWING_CURVES, DRAWING_RELIEF };
+enum FilterId { DRAWING_CURVES, DRAWING_RELIEF, BASE_FROM_SILHOUETTE };
 }
 
 ReliefKitDrawingPlugin::ReliefKitDrawingPlugin()
-    : ReliefKitPlugin("ReliefKitDrawing", {drawing_curves_filter(DRAWING_CURVES), drawing_relief_filter(DRAWING_RELIEF)}) {}
+    : ReliefKitPlugin("ReliefKitDrawing", {drawing_curves_filter(DRAWING_CURVES), drawing_relief_filter(DRAWING_RELIEF),
+                                           base_from_silhouette_filter(BASE_FROM_SILHOUETTE)}) {}

@@ -16,4 +16,9 @@ ln -sfn "$sys/libmeshlab-common.so" "$libdir/libmeshlab-common.so"
 find "$libdir/plugins" -maxdepth 1 -type l -delete
 for p in "$sys"/plugins/*.so; do ln -sfn "$p" "$libdir/plugins/$(basename "$p")"; done
 for p in "$ours"/*.so; do [ -e "$p" ] && ln -sfn "$(readlink -f "$p")" "$libdir/plugins/$(basename "$p")"; done
+# The base-model library the build made (build/bases), where the plugin looks for it: <bin>/../share.
+if [ -d "$ours/../bases" ]; then
+  mkdir -p "$prefix/share/reliefkit"
+  ln -sfn "$(readlink -f "$ours/../bases")" "$prefix/share/reliefkit/bases"
+fi
 exit 0
