@@ -62,8 +62,12 @@ void base_parameters(MeshModel&, RichParameterList& par) {
                          "millimetres per pixel."));
   par.addParam(RichFloat("scale", 1.f, "Drawing scale (object : drawing)",
                          "How many times larger the object is than its drawing (2 for a figure drawn at 1:2)."));
-  par.addParam(RichString("library", shipped_library(), "Model library folder",
-                          "ReliefKit's library of base models (made by the build; empty: not used)."));
+  const QString shipped = shipped_library();
+  par.addParam(RichString("library", "", "Model library folder",
+                          "Empty: ReliefKit's own library of base models (" +
+                              (shipped.isEmpty() ? QString("not found beside this MeshLab") : shipped) +
+                              "), so that scripts work on any machine. A folder: that library instead. \"none\": no "
+                              "library, only your models."));
   par.addParam(RichString("user_models", "", "Your models folder",
                           "A folder of your own models (PLY, OBJ, STL, OFF; sub-folders are classes), searched with the "
                           "library. Their silhouette features are cached in the folder on the first search."));
@@ -103,7 +107,15 @@ void apply_base(FilterCall& call) {
   const int passes = read_int(call, "passes", "Passes", 1, 20);
   const double gap = read_float(call, "gap", "Outline gap (px, 0: auto)", 0, 10000);
   const int listed = read_int(call, "matches", "Matches listed", 1, 100);
-  const QString library_dir = call.params.getString("library").trimmed();
+  QString library_dir = call.params.getString("library").trimmed();
+  if (library_dir.isEmpty()) {
+    library_dir = shipped_library();
+    if (library_dir.isEmpty())
+      throw InputError("ReliefKit's library of base models is not beside this MeshLab (share/reliefkit/bases next to its "
+                       "bin folder): give its folder in \"Model library folder\" (build/bases in a build tree).");
+  } else if (library_dir.compare("none", Qt::CaseInsensitive) == 0) {
+    library_dir.clear();
+  }
   const QString user_dir = call.params.getString("user_models").trimmed();
   const QString wanted = call.params.getString("model").trimmed();
   if (path.trimmed().isEmpty()) throw InputError("No drawing image was given: choose the image file in \"Drawing image\".");
@@ -177,9 +189,10 @@ void apply_base(FilterCall& call) {
   if (!library_dir.isEmpty()) add_library_folder(library, library_dir.toStdString());
   if (!user_dir.isEmpty()) add_library_folder(library, user_dir.toStdString());
   for (const auto& n : library.notes) call.log(QString::fromStdString(n));
+  if (!library_dir.isEmpty()) call.log("Model library: " + library_dir + (user_dir.isEmpty() ? QString() : " and " + user_dir));
   if (library.models.empty())
     throw InputError("The model library is empty: \"Model library folder\"" +
-                     (library_dir.isEmpty() ? std::string(" is not set") : " (" + library_dir.toStdString() + ")") +
+                     (library_dir.isEmpty() ? std::string(" is \"none\"") : " (" + library_dir.toStdString() + ")") +
                      " and \"Your models folder\"" +
                      (user_dir.isEmpty() ? std::string(" is not set") : " (" + user_dir.toStdString() + ")") +
                      " hold no readable PLY, OBJ, STL or OFF model.");

@@ -25,7 +25,7 @@ cv::Mat draw_figure(const Outline& outline, const FigureStyle& st, std::mt19937&
   cv::Mat img(st.size, st.size, CV_8UC1, cv::Scalar(255));
   Vec2 lo = outline[0], hi = outline[0];
   for (const auto& p : outline) { lo = lo.cwiseMin(p); hi = hi.cwiseMax(p); }
-  const double a = 0.7 * st.size / std::max(hi.x() - lo.x(), hi.y() - lo.y());
+  const double a = st.scale > 0 ? st.scale : 0.7 * st.size / std::max(hi.x() - lo.x(), hi.y() - lo.y());
   const double b = 0.5 * st.size - a * 0.5 * (lo.x() + hi.x()), c = 0.5 * st.size + a * 0.5 * (lo.y() + hi.y());
   if (to_px) *to_px = cv::Vec3d(a, b, c);
   const Outline px = outline_in_pixels(outline, cv::Vec3d(a, b, c));
@@ -53,6 +53,25 @@ cv::Mat draw_figure(const Outline& outline, const FigureStyle& st, std::mt19937&
     f.convertTo(img, CV_8U);
   }
   return img;
+}
+
+cv::Mat draw_views(const TriMesh& model, const std::vector<reliefkit::ViewKind>& views, FigureStyle st, std::mt19937& rng) {
+  std::vector<Outline> outlines;
+  double extent = 0;
+  for (auto v : views) {
+    outlines.push_back(reliefkit::mesh_outline(model, v, 800));
+    extent = std::max(extent, reliefkit::outline_diagonal(outlines.back()) / std::sqrt(2.0));
+  }
+  if (st.scale <= 0) st.scale = 0.75 * st.size / extent;
+  std::vector<cv::Mat> tiles;
+  for (size_t i = 0; i < views.size(); ++i) {
+    FigureStyle s = st;
+    s.caption = st.caption && i + 1 == views.size();
+    tiles.push_back(draw_figure(outlines[i], s, rng));
+  }
+  cv::Mat out;
+  cv::vconcat(tiles, out);
+  return out;
 }
 
 Outline outline_in_pixels(const Outline& outline, const cv::Vec3d& t) {

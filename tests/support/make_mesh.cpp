@@ -4,6 +4,8 @@
 //   rk_make_mesh sphere r levels jitter out.ply
 //   rk_make_mesh convert in.obj|in.ply out.ply   (e.g. OBJ files MeshLab 2020.09's importer aborts on)
 //   rk_make_mesh nested-drawing out.png          (the synthetic line drawing of the drawing tests)
+//   rk_make_mesh base-figure CLASS SEED ft out.png (a base-library class drawn in front and top view)
+//   rk_make_mesh goblet-figure out.png           (the goblet of thesis fig. 7.8, front view)
 //   rk_make_mesh dome W H cell out.ply           (a smooth dome W x H, cell apart: a base for drawings)
 #include <cmath>
 #include <cstdio>
@@ -13,6 +15,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
+#include "bases.h"
 #include "drawings.h"
 #include "mesh_files.h"
 #include "shapes.h"
@@ -32,6 +35,23 @@ int main(int argc, char** argv) {
       std::printf("faces %d mean_edge %.9g\n", m.n_faces(), reliefkit::edge_length_stats(m).mean);
     } else if (kind == "nested-drawing" && argc == 3) {
       if (!cv::imwrite(argv[2], rktest::nested_drawing())) throw std::runtime_error("cannot write the drawing");
+    } else if (kind == "base-figure" && argc == 6) {
+      // A library-class model (class index, seed) drawn in the views given as letters: f front, s side, t top.
+      reliefkit::BaseModelSpec spec;
+      spec.kind = std::atoi(argv[2]);
+      spec.seed = unsigned(std::atol(argv[3]));
+      spec.variant = int(spec.seed % 6);
+      std::vector<reliefkit::ViewKind> views;
+      for (const char* c = argv[4]; *c; ++c)
+        views.push_back(*c == 't' ? reliefkit::ViewKind::Top : *c == 's' ? reliefkit::ViewKind::Side : reliefkit::ViewKind::Front);
+      std::mt19937 rng(spec.seed);
+      rktest::FigureStyle style;
+      style.size = 500;
+      const cv::Mat img = rktest::draw_views(rktest::upright(reliefkit::make_base_model(spec)), views, style, rng);
+      if (!cv::imwrite(argv[5], img)) throw std::runtime_error("cannot write the figure");
+    } else if (kind == "goblet-figure" && argc == 3) {
+      std::mt19937 rng(1);
+      if (!cv::imwrite(argv[2], rktest::draw_figure(rktest::goblet_outline(), {}, rng))) throw std::runtime_error("cannot write the figure");
     } else if (kind == "dome" && argc == 6) {
       const int w = std::atoi(argv[2]), h = std::atoi(argv[3]);
       reliefkit::TriMesh m = reliefkit::drawing_grid(w, h, std::atof(argv[4]), 1.0);
@@ -45,7 +65,8 @@ int main(int argc, char** argv) {
       rktest::write_ply(argv[5], rktest::sphere(std::atof(argv[2]), std::atoi(argv[3]), std::atof(argv[4])));
     } else {
       std::fprintf(stderr, "usage: rk_make_mesh torus R r nu nv jitter seed out.ply | relief-torus FACES out.ply | "
-                           "sphere r levels jitter out.ply | nested-drawing out.png | dome W H cell out.ply\n");
+                           "sphere r levels jitter out.ply | nested-drawing out.png | dome W H cell out.ply | base-figure CLASS SEED VIEWS(fst) out.png | "
+                           "goblet-figure out.png\n");
       return 2;
     }
   } catch (const std::exception& e) {
