@@ -1125,7 +1125,14 @@ TriMesh deform_to_outlines(const TriMesh& model, const std::vector<ViewOutline>&
     for (int i = 0; i < n; ++i) A.coeffRef(i, i) += weight[i] + kAnchor;
     const Eigen::MatrixXd B = params.alpha * Ltdelta_ref + target + kAnchor * V0;
     if (pass == 0) {
-      llt.analyzePattern(A);  // the pattern is the same in every pass: ordered once
+      // The pattern is the same in every pass: ordered once. For a single pass AMD (measured on a
+      // 117 K-face jug: 0.07 s to order, 0.73 s to factor); for several, CHOLMOD's own choice
+      // (0.7 s to order, but 0.5 s per factorization).
+      if (params.passes == 1) {
+        llt.cholmod().nmethods = 1;
+        llt.cholmod().method[0].ordering = CHOLMOD_AMD;
+      }
+      llt.analyzePattern(A);
       if (llt.info() != Eigen::Success) throw InputError("The deformation's system could not be ordered (CHOLMOD).");
     }
     llt.factorize(A);
