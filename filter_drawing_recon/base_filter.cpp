@@ -33,8 +33,9 @@ const char* kBaseInfo =
     "Method (thesis sect. 7.5): the outline of each view (gaps in the line bridged, text beside it ignored); "
     "its circle-distance feature (distances from the outline to its enclosing circle in 64 directions) "
     "compared with the library's (models normalised to their principal axes, every way of facing the views "
-    "tried); the best model's silhouette vertices pulled to the closest points of the drawing's outlines, depth "
-    "kept, while its Laplacian coordinates are preserved (eq. 7.8) — one sparse Cholesky solve per pass. ";
+    "tried); the best model's silhouette vertices pulled onto the drawing's outlines, depth kept, while its "
+    "Laplacian coordinates are preserved (eq. 7.8) — one sparse Cholesky solve per pass, passes repeated while "
+    "the fit improves (1 pass: the thesis). ";
 
 const char* kBaseCitation =
     "M. Kolomenkin, G. Leifman, I. Shimshoni, A. Tal, <b>\"Reconstruction of relief objects from line "

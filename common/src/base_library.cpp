@@ -193,6 +193,22 @@ Outline largest_contour(const cv::Mat& mask, const std::function<Vec2(double, do
   for (const auto& p : contours[best]) out.push_back(to(p.x, p.y));
   return out;
 }
+// A pixel contour smoothed along itself (Gaussian of `sigma` points, cyclic): the one-pixel
+// staircase of a traced outline would otherwise be copied onto a fine model's silhouette.
+Outline smooth_closed(const Outline& o, double sigma) {
+  const int n = int(o.size()), r = int(std::ceil(3 * sigma));
+  if (n < 2 * r + 3) return o;
+  std::vector<double> w(size_t(2 * r + 1));
+  for (int k = -r; k <= r; ++k) w[size_t(k + r)] = std::exp(-0.5 * k * k / (sigma * sigma));
+  const double total = std::accumulate(w.begin(), w.end(), 0.0);
+  Outline out(o.size());
+  for (int i = 0; i < n; ++i) {
+    Vec2 p = Vec2::Zero();
+    for (int k = -r; k <= r; ++k) p += w[size_t(k + r)] * o[size_t(((i + k) % n + n) % n)];
+    out[size_t(i)] = p / total;
+  }
+  return out;
+}
 }  // namespace
 
 std::vector<DrawingOutline> drawing_outlines(const cv::Mat& grey, const cv::Rect& region, int count,
@@ -248,7 +264,7 @@ std::vector<DrawingOutline> drawing_outlines(const cv::Mat& grey, const cv::Rect
     const int i = bodies[b].second;
     cv::Mat mask = labels == i;
     DrawingOutline d;
-    d.outline = largest_contour(mask, [&](double x, double y) { return Vec2(x - pad + r.x, y - pad + r.y); });
+    d.outline = smooth_closed(largest_contour(mask, [&](double x, double y) { return Vec2(x - pad + r.x, y - pad + r.y); }), 2.0);
     d.box = cv::Rect(stats.at<int>(i, cv::CC_STAT_LEFT) - pad + r.x, stats.at<int>(i, cv::CC_STAT_TOP) - pad + r.y,
                      stats.at<int>(i, cv::CC_STAT_WIDTH), stats.at<int>(i, cv::CC_STAT_HEIGHT));
     d.area = bodies[b].first;
