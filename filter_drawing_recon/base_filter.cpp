@@ -224,9 +224,7 @@ void apply_base(FilterCall& call) {
 
   // ---- the model, placed on the outlines and deformed ----
   if (call.progress) call.progress(20, "Placing the model");
-  TriMesh model = normalize_to_principal_axes(read_model_file(lm.path));
-  for (auto& p : model.vertices) p = chosen.orientation.apply(p);
-  model = place_on_outlines(model, outlines);
+  TriMesh model = place_on_outlines(oriented(normalize_to_principal_axes(read_model_file(lm.path)), chosen.orientation), outlines);
   DeformParams dp;
   dp.alpha = alpha;
   dp.passes = passes;

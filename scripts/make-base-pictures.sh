@@ -35,9 +35,9 @@ step=$(grep -o 'step [0-9.e+-]* mesh units' "$out/example.log" | head -1 | cut -
 colorize "$(python3 -c "print(3 * $step)")" >"$out/colorize.mlx"
 "$server" -i "$out/relief.ply" -s "$out/colorize.mlx" -o "$out/relief_c.ply" -m vc vq >/dev/null 2>&1
 convert "$out/lamp_figure.png" -trim +repage -bordercolor white -border 30 -resize 600x620 -gravity center -extent 760x660 "$out/p1.png"
-view "$out/p2.png" 150 0 "$out/retrieved.ply"
-view "$out/p3.png" 150 0 "$out/base.ply"
-view "$out/p4.png" 150 0 "$out/relief_c.ply"
+view "$out/p2.png" -150 0 "$out/retrieved.ply"
+view "$out/p3.png" -150 0 "$out/base.ply"
+view "$out/p4.png" -150 0 "$out/relief_c.ply"
 label "$out/p1.png" "1. drawing (front, top)"; label "$out/p2.png" "2. retrieved: lamp_31"
 label "$out/p3.png" "3. deformed base"; label "$out/p4.png" "4. relief on the base"
 convert "$out/p1.png" "$out/p2.png" "$out/p3.png" "$out/p4.png" +append -resize 1600x "$img/base_pipeline.png"
@@ -49,8 +49,8 @@ sed -e "s#value=\"examples/data/lamp_figure.png\"#value=\"$out/goblet.png\"#" -e
   python3 -c "import sys; s=sys.stdin.read(); i=s.index(' <!-- MeshLab'); print(s[:i] + '</FilterScript>')" >"$out/goblet.mlx"
 "$server" -s "$out/goblet.mlx" -o "$out/cyl.ply" -l 0 -o "$out/goblet.ply" -l 1 >"$out/goblet.log" 2>&1
 convert "$out/goblet.png" -trim +repage -bordercolor white -border 30 -resize 600x620 -gravity center -extent 760x660 "$out/g1.png"
-view "$out/g2.png" 60 0 "$out/cyl.ply"
-view "$out/g3.png" 60 0 "$out/goblet.ply"
+view "$out/g2.png" -60 0 "$out/cyl.ply"
+view "$out/g3.png" -60 0 "$out/goblet.ply"
 label "$out/g1.png" "drawing"; label "$out/g2.png" "cylinder_05, placed"; label "$out/g3.png" "deformed (1 view)"
 convert "$out/g1.png" "$out/g2.png" "$out/g3.png" +append -resize 1200x "$img/base_goblet.png"
 
@@ -81,7 +81,7 @@ click 231 10
 sleep 1
 click 290 113
 sleep 2
-drag 430 560 430 410
+drag 430 560 430 710
 sleep 4
 shot $out/gui_applied.png
 EOF

@@ -92,6 +92,25 @@ TEST(BaseLibrary, FeatureSymmetriesArePermutations) {
   EXPECT_GT(feature_distance(circle_feature(mesh_outline(cyl, 1, 3)), f), 0.05);
 }
 
+TEST(BaseLibrary, OrientationsKeepFacesOutwards) {
+  // All 48 ways of facing the views; a mirror must turn the faces round (positive volume).
+  const TriMesh m = make_base_model(standard_base_specs(1)[8]);  // a closed sphere
+  auto volume = [](const TriMesh& t) {
+    double v = 0;
+    for (const auto& f : t.faces) v += t.vertices[size_t(f[0])].dot(t.vertices[size_t(f[1])].cross(t.vertices[size_t(f[2])])) / 6;
+    return v;
+  };
+  ASSERT_GT(volume(m), 0);
+  const auto all = all_axis_orientations();
+  ASSERT_EQ(all.size(), 48u);
+  int mirrors = 0;
+  for (const auto& o : all) {
+    mirrors += o.mirrors();
+    EXPECT_NEAR(volume(oriented(m, o)), volume(m), 1e-9 * std::abs(volume(m)));
+  }
+  EXPECT_EQ(mirrors, 24);
+}
+
 TEST(BaseLibrary, OutlineOfADrawnFigure) {
   // An ellipse drawn with two breaks in its line, hatching inside, a caption and paper noise.
   Outline ellipse;

@@ -138,7 +138,10 @@ struct AxisOrientation {
   std::array<int, 3> axis{0, 1, 2};   // world coordinate k = sign[k] * model coordinate axis[k]
   std::array<int, 3> sign{1, 1, 1};
   Vec3 apply(const Vec3& p) const { return Vec3(sign[0] * p[axis[0]], sign[1] * p[axis[1]], sign[2] * p[axis[2]]); }
+  bool mirrors() const;  // an odd permutation times the signs: faces must be turned round
 };
+/// The mesh turned by the orientation, its faces kept facing outwards (turned round for a mirror).
+TriMesh oriented(const TriMesh& mesh, const AxisOrientation& o);
 std::vector<AxisOrientation> all_axis_orientations();
 /// The model's silhouette feature in a view of the world, for an orientation (from its three cached features).
 SilhouetteFeature oriented_feature(const LibraryModel& model, const AxisOrientation& o, ViewKind view);
