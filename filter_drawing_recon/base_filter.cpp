@@ -75,6 +75,11 @@ void base_parameters(MeshModel&, RichParameterList& par) {
   par.addParam(RichString("model", "", "Use model",
                           "The name of a library model to deform instead of the best match (e.g. cylinder_05, as the "
                           "log lists them); empty: the best match."));
+  par.addParam(RichBool("round", false, "One view: a round object",
+                        "With a front (or side) view alone, take the object as round: its outline is used as the "
+                        "side (front) view too, so that a stem drawn narrow is narrow all round. Good when the model "
+                        "is close to the drawing; a drastic change (a cylinder made a goblet) folds the mesh. Off: the "
+                        "depth stays the model's (the thesis). Not used with two or more views."));
   par.addParam(RichFloat("alpha", 1.f, "Shape weight (alpha)",
                          "How strongly the model keeps its shape (its Laplacian coordinates) against fitting the "
                          "outlines (thesis eq. 7.8: 1). Smaller fits the outlines more closely, larger keeps more of "
@@ -108,6 +113,7 @@ void apply_base(FilterCall& call) {
   const int passes = read_int(call, "passes", "Passes", 1, 20);
   const double gap = read_float(call, "gap", "Outline gap (px, 0: auto)", 0, 10000);
   const int listed = read_int(call, "matches", "Matches listed", 1, 100);
+  const bool round = read_bool(call, "round", "One view: a round object");
   QString library_dir = call.params.getString("library").trimmed();
   if (library_dir.isEmpty()) {
     library_dir = shipped_library();
@@ -224,13 +230,21 @@ void apply_base(FilterCall& call) {
 
   // ---- the model, placed on the outlines and deformed ----
   if (call.progress) call.progress(20, "Placing the model");
-  TriMesh model = place_on_outlines(oriented(normalize_to_principal_axes(read_model_file(lm.path)), chosen.orientation), outlines);
+  std::vector<ViewOutline> fit = outlines;
+  if (round && views.size() == 1 && views[0].kind != ViewKind::Top) {
+    fit.push_back({views[0].kind == ViewKind::Front ? ViewKind::Side : ViewKind::Front, outlines[0].outline});
+    call.log(QString("One %1 view: the object is taken as round (the same outline as its %2 view; \"One view: a round "
+                     "object\" off keeps the model's depth).")
+                 .arg(view_name(views[0].kind))
+                 .arg(view_name(fit.back().kind)));
+  }
+  TriMesh model = place_on_outlines(oriented(normalize_to_principal_axes(read_model_file(lm.path)), chosen.orientation), fit);
   DeformParams dp;
   dp.alpha = alpha;
   dp.passes = passes;
   dp.progress = call.progress;
   DeformReport rep;
-  const TriMesh base = deform_to_outlines(model, outlines, dp, &rep);
+  const TriMesh base = deform_to_outlines(model, fit, dp, &rep);
   std::vector<double> moved(size_t(base.n_vertices()));
   for (int i = 0; i < base.n_vertices(); ++i) moved[size_t(i)] = (base.vertices[size_t(i)] - model.vertices[size_t(i)]).norm();
 
@@ -244,7 +258,7 @@ void apply_base(FilterCall& call) {
                .arg(name)
                .arg(QString::fromStdString(lm.kind))
                .arg(chosen.score, 0, 'f', 4)
-               .arg(views.size())
+               .arg(fit.size())
                .arg(rep.silhouette_vertices)
                .arg(100 * rep.hausdorff_before, 0, 'f', 2)
                .arg(100 * rep.hausdorff_after, 0, 'f', 2)

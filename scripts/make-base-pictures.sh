@@ -10,15 +10,7 @@ out="$here/build/base-pictures"; rm -rf "$out"; mkdir -p "$out"
 img="$here/docs/img"
 server="$here/scripts/meshlabserver"
 
-# A screenshot of MeshLab showing FILES, turned by dragging (dy px up) and zoomed (wheel steps).
-view() {  # view(out.png, dy, wheel, files...)
-  local shot="$1" dy="$2" wh="$3"; shift 3
-  { echo "sleep 2"; echo "click 231 10"; echo "sleep 1"; echo "click 290 113"; echo "sleep 1"; [ "$dy" != 0 ] && echo "drag 430 560 430 $((560 - dy))"; [ "$wh" != 0 ] && echo "wheel 430 420 $wh"
-    echo "sleep 4"; echo "shot $shot"; } >"$out/view.txt"
-  "$here/scripts/gui-shots.sh" "$out/view.txt" -- "$@" >/dev/null
-  convert "$shot" -crop 760x660+40+100 +repage "$shot"
-}
-label() { convert "$1" -gravity north -background white -splice 0x34 -font DejaVu-Sans -pointsize 22 -annotate +0+4 "$2" "$1"; }
+source "$here/scripts/picture-helpers.sh"  # view(), label()
 colorize() {  # colorize(max height) > mlx
   printf '<!DOCTYPE FilterScript>\n<FilterScript>\n <filter name="Colorize by vertex Quality">\n'
   printf '  <Param type="RichFloat" name="minVal" value="0"/>\n  <Param type="RichFloat" name="maxVal" value="%s"/>\n' "$1"
@@ -49,10 +41,15 @@ sed -e "s#value=\"examples/data/lamp_figure.png\"#value=\"$out/goblet.png\"#" -e
   python3 -c "import sys; s=sys.stdin.read(); i=s.index(' <!-- MeshLab'); print(s[:i] + '</FilterScript>')" >"$out/goblet.mlx"
 "$server" -s "$out/goblet.mlx" -o "$out/cyl.ply" -l 0 -o "$out/goblet.ply" -l 1 >"$out/goblet.log" 2>&1
 convert "$out/goblet.png" -trim +repage -bordercolor white -border 30 -resize 600x620 -gravity center -extent 760x660 "$out/g1.png"
-view "$out/g2.png" -60 0 "$out/cyl.ply"
-view "$out/g3.png" -60 0 "$out/goblet.ply"
-label "$out/g1.png" "drawing"; label "$out/g2.png" "cylinder_05, placed"; label "$out/g3.png" "deformed (1 view)"
-convert "$out/g1.png" "$out/g2.png" "$out/g3.png" +append -resize 1200x "$img/base_goblet.png"
+sed -e 's#name="round" value="false"#name="round" value="true"#' "$out/goblet.mlx" >"$out/goblet_round.mlx"
+"$server" -s "$out/goblet_round.mlx" -o "$out/goblet_round.ply" -l 1 >"$out/goblet_round.log" 2>&1
+view "$out/g2.png" 0 0 "$out/cyl.ply"
+view "$out/g3.png" 0 0 "$out/goblet.ply"
+view "$out/g4.png" -120 0 "$out/goblet.ply"
+view "$out/g5.png" -120 0 "$out/goblet_round.ply"
+label "$out/g1.png" "drawing (front view)"; label "$out/g2.png" "cylinder_05, placed"; label "$out/g3.png" "deformed (depth kept)"
+label "$out/g4.png" "the same from above"; label "$out/g5.png" "taken as round, from above"
+convert "$out/g1.png" "$out/g2.png" "$out/g3.png" "$out/g4.png" "$out/g5.png" +append -resize 1600x "$img/base_goblet.png"
 
 # 3. The GUI: Filters search > Base from Drawing Silhouette, the drawing chosen with "...", views
 # typed, Apply, the dialog closed, the view turned.
@@ -63,19 +60,19 @@ type Base from Drawing
 sleep 2
 click 860 99
 sleep 3
-click 586 412
+click 592 425
 sleep 3
 type $out/lamp_figure.png
 key Return
 sleep 2
-click 430 443
+click 430 456
 key ctrl+a
 type front; top
 sleep 1
 shot $out/gui_dialog.png
-click 480 793
+click 485 822
 sleep 15
-click 164 793
+click 166 822
 sleep 2
 click 231 10
 sleep 1
@@ -86,6 +83,6 @@ sleep 4
 shot $out/gui_applied.png
 EOF
 "$here/scripts/gui-shots.sh" "$out/gui.txt" -- >/dev/null
-convert "$out/gui_dialog.png" -crop 645x815+0+0 +repage "$img/gui_base_dialog.png"
+convert "$out/gui_dialog.png" -crop 652x845+0+0 +repage "$img/gui_base_dialog.png"
 convert "$out/gui_applied.png" -resize 75% "$img/gui_base_applied.png"
 echo "pictures written to $img"

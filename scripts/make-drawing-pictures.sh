@@ -28,15 +28,7 @@ colorize() {  # colorize(relief log) > mlx
   printf '  <Param type="RichDynamicFloat" name="perc" value="0" min="0" max="100"/>\n'
   printf '  <Param type="RichBool" name="zeroSym" value="false"/>\n </filter>\n</FilterScript>\n'
 }
-# A screenshot of MeshLab showing FILES, turned by dragging (dy px up) and zoomed (wheel steps).
-view() {  # view(out.png, dy, wheel, files...)
-  local shot="$1" dy="$2" wh="$3"; shift 3
-  { echo "sleep 2"; echo "click 231 10"; echo "sleep 1"; echo "click 290 113"; echo "sleep 1"; [ "$dy" != 0 ] && echo "drag 430 560 430 $((560 - dy))"; [ "$wh" != 0 ] && echo "wheel 430 420 $wh"
-    echo "sleep 4"; echo "shot $shot"; } >"$out/view.txt"
-  "$here/scripts/gui-shots.sh" "$out/view.txt" -- "$@" >/dev/null
-  convert "$shot" -crop 760x660+40+100 +repage "$shot"
-}
-label() { convert "$1" -gravity north -background white -splice 0x34 -font DejaVu-Sans -pointsize 22 -annotate +0+4 "$2" "$1"; }
+source "$here/scripts/picture-helpers.sh"  # view(), label()
 
 # 1. The pipeline on the Qesem cave drawing.
 cp "$shared/lithic_qesem_cave.png" "$out/qesem.png"
