@@ -673,7 +673,10 @@ struct Used : vcg::UsedTypes<vcg::Use<V>::AsVertexType, vcg::Use<F>::AsFaceType>
 class V : public vcg::Vertex<Used, vcg::vertex::Coord3f, vcg::vertex::Normal3f, vcg::vertex::Color4b,
                              vcg::vertex::TexCoord2f, vcg::vertex::BitFlags> {};
 class F : public vcg::Face<Used, vcg::face::VertexRef, vcg::face::Normal3f, vcg::face::Color4b, vcg::face::BitFlags> {};
-class Mesh : public vcg::tri::TriMesh<std::vector<V>, std::vector<F>> {};
+class Mesh : public vcg::tri::TriMesh<std::vector<V>, std::vector<F>> {
+ public:
+  ~Mesh() { ClearAttributes(); }  // vcglib's own destructor leaves the importers' attributes (OBJ materials)
+};
 }  // namespace vm
 }  // namespace
 
