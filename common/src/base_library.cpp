@@ -1008,6 +1008,16 @@ TriMesh deform_to_outlines(const TriMesh& model, const std::vector<ViewOutline>&
   TriMesh current = model;
   DeformReport rep;
   rep.hausdorff_before = silhouette_error(model, views);
+  // Edge -> faces (count, f0, f1), for the contour generators: the topology is the same in every pass.
+  std::map<std::pair<int, int>, std::array<int, 3>> edge_faces;
+  for (size_t f = 0; f < model.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      int a = model.faces[f][k], b = model.faces[f][(k + 1) % 3];
+      if (a > b) std::swap(a, b);
+      auto& e = edge_faces[{a, b}];
+      if (e[0] < 2) e[size_t(1 + e[0])] = int(f);
+      ++e[0];
+    }
   std::vector<double> history;  // silhouette error after each pass
   for (int pass = 0; pass < params.passes; ++pass) {
     const int p0 = 5 + 90 * pass / params.passes, p1 = 5 + 90 * (pass + 1) / params.passes;
@@ -1021,16 +1031,6 @@ TriMesh deform_to_outlines(const TriMesh& model, const std::vector<ViewOutline>&
       fn[f] = (current.vertices[size_t(t[1])] - current.vertices[size_t(t[0])])
                   .cross(current.vertices[size_t(t[2])] - current.vertices[size_t(t[0])]);
     }
-    // Edge -> faces, for the contour generators.
-    std::map<std::pair<int, int>, std::array<int, 3>> edge_faces;  // (count, f0, f1)
-    for (size_t f = 0; f < current.faces.size(); ++f)
-      for (int k = 0; k < 3; ++k) {
-        int a = current.faces[f][k], b = current.faces[f][(k + 1) % 3];
-        if (a > b) std::swap(a, b);
-        auto& e = edge_faces[{a, b}];
-        if (e[0] < 2) e[size_t(1 + e[0])] = int(f);
-        ++e[0];
-      }
     int constrained = 0;
     for (size_t vi = 0; vi < views.size(); ++vi) {
       const auto& view = views[vi];
