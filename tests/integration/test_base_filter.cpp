@@ -153,6 +153,27 @@ TEST(BaseFilter, ExampleChainsBaseAndRelief) {
     ASSERT_TRUE(((p - lo).array() > -(hi + 1e-3)).all() && ((up - p).array() > -(hi + 1e-3)).all());
 }
 
+TEST(BaseFilter, ACutDrawingIsFlagged) {
+  // The real cuneiform drawing (tests/data/drawings): the tablet's outline runs into the image's
+  // border and no base model fits it; the base is still written, with both warnings in the log.
+  const std::string dir = temp_dir("base_cut");
+  ServerRun run = run_script(
+      dir, {base_filter(std::string(RELIEFKIT_SOURCE_DIR) + "/tests/data/drawings/cuneiform_P102630_obverse.png")},
+      {"-o", "base.ply", "-l", "1"});
+  ASSERT_FALSE(run.crashed) << run.output;
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("outline touches the border of its image"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("Warning: the base stays"), std::string::npos) << run.output;
+  // The lamp figure raises neither.
+  const std::string png = dir + "/lamp.png";
+  std::filesystem::copy_file(std::string(RELIEFKIT_SOURCE_DIR) + "/examples/data/lamp_figure.png", png);
+  BaseArgs a;
+  a.views = "front; top";
+  run = run_script(dir, {base_filter(png, a)}, {"-o", "lamp.ply", "-l", "1"});
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(run.output.find("Warning:"), std::string::npos) << run.output;
+}
+
 TEST(BaseFilter, UserModelsAndBadInput) {
   const std::string dir = temp_dir("base_bad");
   std::mt19937 rng(2);
