@@ -1,9 +1,18 @@
 #!/usr/bin/env bash
-# Set-up (if needed) and build: libraries, plugins, tests, benchmarks, and the private prefix.
-# Usage: scripts/build.sh [extra cmake -D options]
+# Set-up (if needed) and build. Usage: scripts/build.sh [--target NAME ...] [extra cmake -D options]
+# Without --target: everything (libraries, plugins, tests, benchmarks, the private prefix);
+# with it, only the named targets and what they need (scripts/main-job.sh builds `prefix` alone).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+targets=()
+options=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --target) targets+=(--target "$2"); shift 2 ;;
+    *) options+=("$1"); shift ;;
+  esac
+done
 bash "$here/scripts/setup.sh"
 build="${RELIEFKIT_BUILD_DIR:-$here/build}"
-cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
-cmake --build "$build" -j"$(nproc)"
+cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "${options[@]}" >/dev/null
+cmake --build "$build" -j"$(nproc)" "${targets[@]}"

@@ -7,7 +7,7 @@
 #   out/penny_demarcating.obj   the demarcating curves as an edge layer (OBJ 'l' records)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bash "$here/scripts/build.sh"
+bash "$here/scripts/build.sh" --target prefix  # the plugins and the private prefix, no tests
 mkdir -p "$here/out"
 "$here/scripts/meshlabserver" -i "$here/examples/data/penny.ply" \
   -o "$here/out/penny_shaded.ply" -l 0 -m vc vq \

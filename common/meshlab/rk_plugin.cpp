@@ -1,8 +1,10 @@
 #include "rk_plugin.h"
 
+#include <cstdlib>
 #include <exception>
 
 #include "reliefkit/mesh.h"
+#include "reliefkit/work_counts.h"
 
 namespace reliefkit::ml {
 
@@ -51,8 +53,10 @@ bool ReliefKitPlugin::applyFilter(QAction* a, MeshDocument& md, const RichParame
   };
   if (md.mm() == nullptr && s.needs_mesh) return fail("there is no mesh layer to work on; open a mesh first.");
   try {
+    reliefkit::reset_work_counts();
     FilterCall call{md, md.mm(), par, cb, [this](const QString& line) { Log(qUtf8Printable(log_text(line))); }};
     s.apply(call);
+    if (std::getenv("RELIEFKIT_WORK_COUNTS")) call.log("Work counts: " + QString::fromStdString(reliefkit::work_counts().summary()));
     return true;
   } catch (const reliefkit::InputError& e) {
     return fail(QString::fromUtf8(e.what()));

@@ -1,4 +1,5 @@
 #include "reliefkit/laplacian.h"
+#include "reliefkit/work_counts.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +10,7 @@
 namespace reliefkit {
 
 LaplacianResult cotangent_laplacian(const TriMesh& mesh, const MeshTopology& topology, const LaplacianOptions& opt) {
+  count_work(Work::Laplacian);
   const VertexFaces& vf = topology.faces;
   LaplacianResult r;
   const int nv = mesh.n_vertices();

@@ -1,4 +1,5 @@
 #include "reliefkit/mesh.h"
+#include "reliefkit/work_counts.h"
 
 #include "reliefkit/memory.h"
 
@@ -62,6 +63,7 @@ void require_triangles(const TriMesh& mesh) {
 }
 
 VertexFaces vertex_faces(const TriMesh& mesh) {
+  count_work(Work::Adjacency);
   VertexFaces vf;
   const int nv = mesh.n_vertices();
   vf.offset.assign(nv + 1, 0);
@@ -164,9 +166,11 @@ VertexRing boundary_rings(const TriMesh& mesh, const VertexFaces& vf) {
   return r;
 }
 
-MeshTopology mesh_topology(const TriMesh& mesh) {
+MeshTopology mesh_topology(const TriMesh& mesh) { return mesh_topology(mesh, vertex_faces(mesh)); }
+
+MeshTopology mesh_topology(const TriMesh& mesh, VertexFaces faces) {
   MeshTopology t;
-  t.faces = vertex_faces(mesh);
+  t.faces = std::move(faces);
   t.ring = vertex_rings(mesh, t.faces);
   t.border = boundary_rings(mesh, t.faces);
   return t;

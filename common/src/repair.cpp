@@ -1,4 +1,5 @@
 #include "reliefkit/repair.h"
+#include "reliefkit/work_counts.h"
 
 #include <algorithm>
 #include <cstring>
@@ -38,7 +39,23 @@ RepairedMesh repair_for_computation(const TriMesh& in) {
   return out;
 }
 
-RepairReport repair_in_place(TriMesh& mesh, std::vector<int>* of_input) {
+namespace {
+// The adjacency's corners after faces were turned (their corners 1 and 2 swapped).
+void swap_flipped_corners(const TriMesh& mesh, const std::vector<signed char>& flip, VertexFaces& vf) {
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    if (flip[f] != 1) continue;
+    const auto& t = mesh.faces[f];
+    for (int j = 0; j < 3; ++j) {
+      if ((j >= 1 && t[j] == t[0]) || (j == 2 && t[j] == t[1])) continue;  // each vertex once
+      for (int k = vf.offset[t[j]]; k < vf.offset[t[j] + 1]; ++k)
+        if (vf.face[k] == f && vf.corner[k] != 0) vf.corner[k] = static_cast<unsigned char>(3 - vf.corner[k]);
+    }
+  }
+}
+}  // namespace
+
+RepairReport repair_in_place(TriMesh& mesh, std::vector<int>* of_input, VertexFaces* faces) {
+  count_work(Work::Repair);
   RepairReport rep;
   const int nv = mesh.n_vertices();
   if (of_input) {
@@ -236,6 +253,10 @@ RepairReport repair_in_place(TriMesh& mesh, std::vector<int>* of_input) {
     }
     for (int f : part)
       if (flip[f]) std::swap(mesh.faces[f][1], mesh.faces[f][2]);
+  }
+  if (faces) {
+    if (rep.flipped_faces + rep.reversed_parts > 0) swap_flipped_corners(mesh, flip, vf);
+    *faces = std::move(vf);
   }
   return rep;
 }

@@ -1,4 +1,5 @@
 #include "reliefkit/scale.h"
+#include "reliefkit/work_counts.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -33,6 +34,7 @@ std::string number(double x) {
 }  // namespace
 
 MeshScale mesh_scale(const TriMesh& mesh) {
+  count_work(Work::MeshScale);
   MeshScale s;
   const int nv = mesh.n_vertices();
   std::vector<int> parent(nv);
@@ -142,6 +144,7 @@ std::string format_length(const Length& length) {
 }
 
 NoiseEstimate estimate_noise(const TriMesh& mesh, const MeshScale& scale, int max_samples, const VertexFaces* faces) {
+  count_work(Work::Noise);
   NoiseEstimate out;
   const int nv = mesh.n_vertices();
   if (nv == 0 || !(scale.edge > 0)) return out;
@@ -240,6 +243,7 @@ double automatic_presmoothing(const NoiseEstimate& noise, const MeshScale& scale
 namespace reliefkit {
 
 TriMesh noise_patch(double relative_noise, int n) {
+  count_work(Work::NoiseFloor);
   TriMesh m;
   uint64_t state = 0x2545F4914F6CDD1Dull;
   auto uniform = [&] {

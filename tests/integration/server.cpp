@@ -19,8 +19,11 @@ static std::string quote(const std::string& s) {
   return r + "'";
 }
 
+std::string source_dir() { return RELIEFKIT_SOURCE_DIR; }
+std::string binary_dir() { return RELIEFKIT_BINARY_DIR; }
+
 ServerRun run_meshlabserver(const std::vector<std::string>& args) {
-  std::string cmd = quote(std::string(RELIEFKIT_SOURCE_DIR) + "/scripts/meshlabserver");
+  std::string cmd = quote(source_dir() + "/scripts/meshlabserver");
   for (const auto& a : args) cmd += " " + quote(a);
   cmd += " 2>&1";
   ServerRun r;
@@ -41,7 +44,7 @@ ServerRun run_meshlabserver(const std::vector<std::string>& args) {
 }
 
 std::string temp_dir(const std::string& name) {
-  auto d = std::filesystem::path(RELIEFKIT_BINARY_DIR) / "test-output" / name;
+  auto d = std::filesystem::path(binary_dir()) / "test-output" / name;
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
   return d.string();

@@ -14,6 +14,11 @@ struct ServerRun {
   std::string output;    // stdout + stderr
 };
 
+/// The source tree and the build tree (compiled into server.cpp alone, so that the other test
+/// files do not depend on where the clone lies and a compiler cache serves every clone).
+std::string source_dir();
+std::string binary_dir();
+
 /// Runs scripts/meshlabserver with the given arguments.
 ServerRun run_meshlabserver(const std::vector<std::string>& args);
 

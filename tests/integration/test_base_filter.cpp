@@ -67,7 +67,7 @@ std::string first_match(const std::string& log) {
 TEST(BaseFilter, LampDrawingFindsALampAndFitsItsOutlines) {
   const std::string dir = temp_dir("base_lamp");
   const std::string png = dir + "/lamp.png";
-  std::filesystem::copy_file(std::string(RELIEFKIT_SOURCE_DIR) + "/examples/data/lamp_figure.png", png);
+  std::filesystem::copy_file(rktest::source_dir() + "/examples/data/lamp_figure.png", png);
   BaseArgs a;
   a.views = "front; top";
   ServerRun run = run_script(dir, {base_filter(png, a)}, {"-o", "retrieved.ply", "-l", "0", "-o", "base.ply", "-l", "1", "-m", "vq"});
@@ -124,8 +124,8 @@ TEST(BaseFilter, ExampleChainsBaseAndRelief) {
   // filter writes its interpretation file beside the drawing).
   const std::string dir = temp_dir("base_example");
   for (const char* f : {"lamp_figure.png", "nested_drawing.png"})
-    std::filesystem::copy_file(std::string(RELIEFKIT_SOURCE_DIR) + "/examples/data/" + f, dir + "/" + f);
-  std::ifstream in(std::string(RELIEFKIT_SOURCE_DIR) + "/examples/base_and_relief.mlx");
+    std::filesystem::copy_file(rktest::source_dir() + "/examples/data/" + f, dir + "/" + f);
+  std::ifstream in(rktest::source_dir() + "/examples/base_and_relief.mlx");
   std::stringstream ss;
   ss << in.rdbuf();
   std::string script = ss.str();
@@ -158,7 +158,7 @@ TEST(BaseFilter, ACutDrawingIsFlagged) {
   // border and no base model fits it; the base is still written, with both warnings in the log.
   const std::string dir = temp_dir("base_cut");
   ServerRun run = run_script(
-      dir, {base_filter(std::string(RELIEFKIT_SOURCE_DIR) + "/tests/data/drawings/cuneiform_P102630_obverse.png")},
+      dir, {base_filter(rktest::source_dir() + "/tests/data/drawings/cuneiform_P102630_obverse.png")},
       {"-o", "base.ply", "-l", "1"});
   ASSERT_FALSE(run.crashed) << run.output;
   ASSERT_EQ(run.status, 0) << run.output;
@@ -166,7 +166,7 @@ TEST(BaseFilter, ACutDrawingIsFlagged) {
   EXPECT_NE(run.output.find("Warning: the base stays"), std::string::npos) << run.output;
   // The lamp figure raises neither.
   const std::string png = dir + "/lamp.png";
-  std::filesystem::copy_file(std::string(RELIEFKIT_SOURCE_DIR) + "/examples/data/lamp_figure.png", png);
+  std::filesystem::copy_file(rktest::source_dir() + "/examples/data/lamp_figure.png", png);
   BaseArgs a;
   a.views = "front; top";
   run = run_script(dir, {base_filter(png, a)}, {"-o", "lamp.ply", "-l", "1"});

@@ -74,9 +74,9 @@ TEST(CurvatureFilter, TorusPrincipalCurvaturesBothEstimators) {
 
 TEST(CurvatureFilter, ExampleScriptOnTheCoinScan) {
   std::string dir = temp_dir("coin");
-  ServerRun run = run_meshlabserver({"-i", std::string(RELIEFKIT_SOURCE_DIR) + "/examples/data/penny.ply", "-o",
+  ServerRun run = run_meshlabserver({"-i", rktest::source_dir() + "/examples/data/penny.ply", "-o",
                                      dir + "/out.ply", "-m", "vq", "-s",
-                                     std::string(RELIEFKIT_SOURCE_DIR) + "/examples/curvature.mlx"});
+                                     rktest::source_dir() + "/examples/curvature.mlx"});
   ASSERT_EQ(run.status, 0) << run.output;
   MeshFile out = read_mesh(dir + "/out.ply");
   const auto& q = out.vertex_props["quality"];
@@ -87,7 +87,7 @@ TEST(CurvatureFilter, ExampleScriptOnTheCoinScan) {
   // (The scan has one face against its neighbours' orientation: the filter computes on the
   // repaired copy, and so does the reference.)
   const reliefkit::RepairedMesh coin =
-      reliefkit::repair_for_computation(read_mesh(std::string(RELIEFKIT_SOURCE_DIR) + "/examples/data/penny.ply").mesh);
+      reliefkit::repair_for_computation(read_mesh(rktest::source_dir() + "/examples/data/penny.ply").mesh);
   ASSERT_EQ(coin.report.flipped_faces, 1);
   const reliefkit::ScaledCurvature sc = reliefkit::curvature_at_scale(coin.mesh, reliefkit::Length::automatic(),
                                                                       reliefkit::CurvatureEstimator::Jet, nullptr);

@@ -76,9 +76,9 @@ TEST(DemarcatingFilter, ShadingIsLightOnTheShoulderDarkAtTheFoot) {
 
 TEST(DemarcatingFilter, MainJobScriptOnTheCoin) {
   std::string dir = temp_dir("coin_demarcating");
-  ServerRun run = run_meshlabserver({"-i", std::string(RELIEFKIT_SOURCE_DIR) + "/examples/data/penny.ply", "-o",
+  ServerRun run = run_meshlabserver({"-i", rktest::source_dir() + "/examples/data/penny.ply", "-o",
                                      dir + "/shaded.ply", "-l", "0", "-m", "vc", "-o", dir + "/curves.obj", "-l",
-                                     "1", "-s", std::string(RELIEFKIT_SOURCE_DIR) + "/examples/demarcating_shading.mlx"});
+                                     "1", "-s", rktest::source_dir() + "/examples/demarcating_shading.mlx"});
   ASSERT_EQ(run.status, 0) << run.output;
   MeshFile curves = read_mesh(dir + "/curves.obj");
   MeshFile shaded = read_mesh(dir + "/shaded.ply");
@@ -95,7 +95,7 @@ TEST(DemarcatingFilter, MainJobScriptOnTheCoin) {
   EXPECT_LE(*hi, 0.201 * h);
   // ... and they are where the core draws them on the same scan (a curve shifted along the surface
   // keeps its distance to it): every point within the lift of a core point, and back.
-  const reliefkit::TriMesh penny = read_mesh(std::string(RELIEFKIT_SOURCE_DIR) + "/examples/data/penny.ply").mesh;
+  const reliefkit::TriMesh penny = read_mesh(rktest::source_dir() + "/examples/data/penny.ply").mesh;
   const reliefkit::DemarcatingResult core = reliefkit::compute_demarcating(penny, {});
   auto matched = [&](const std::vector<reliefkit::Vec3>& from, const std::vector<reliefkit::Vec3>& to) {
     size_t near = 0;

@@ -25,7 +25,7 @@ using reliefkit::Vec3;
 
 namespace {
 
-const std::string kShared = std::string(RELIEFKIT_SOURCE_DIR) + "/tests/data/drawings";  // copies of ../shared/data/drawings
+const std::string kShared = rktest::source_dir() + "/tests/data/drawings";  // copies of ../shared/data/drawings
 
 std::vector<std::string> drawing_params(const std::string& path, double dpi = 300, double scale = 1, double sigma = 2) {
   return {param_file("drawing", path), param_float("sigma", sigma), param_float("min_length", 12), param_float("dpi", dpi),
@@ -341,12 +341,12 @@ TEST(DrawingFilters, BadInputStopsWithAClearMessage) {
 namespace {
 // An example script with its relative paths (examples/...) made absolute.
 std::string example(const std::string& name) {
-  std::ifstream f(std::string(RELIEFKIT_SOURCE_DIR) + "/examples/" + name);
+  std::ifstream f(rktest::source_dir() + "/examples/" + name);
   std::stringstream ss;
   ss << f.rdbuf();
   std::string s = ss.str();
   for (size_t at = 0; (at = s.find("value=\"examples/", at)) != std::string::npos;)
-    s.replace(at, 7, "value=\"" + std::string(RELIEFKIT_SOURCE_DIR) + "/"), at += 8;
+    s.replace(at, 7, "value=\"" + rktest::source_dir() + "/"), at += 8;
   return s;
 }
 }  // namespace
@@ -357,9 +357,9 @@ std::string example(const std::string& name) {
 TEST(DrawingFilters, ExampleScriptsRunAndFollowTheBasesUnit) {
   const std::string dir = temp_dir("drawing_examples");
   const std::string png = dir + "/nested_drawing.png";
-  std::filesystem::copy_file(std::string(RELIEFKIT_SOURCE_DIR) + "/examples/data/nested_drawing.png", png);
+  std::filesystem::copy_file(rktest::source_dir() + "/examples/data/nested_drawing.png", png);
   auto local = [&](std::string s) {  // the drawing in the test's folder (its interpretation file is written there)
-    const std::string from = std::string(RELIEFKIT_SOURCE_DIR) + "/examples/data/nested_drawing.png";
+    const std::string from = rktest::source_dir() + "/examples/data/nested_drawing.png";
     for (size_t at = 0; (at = s.find(from, at)) != std::string::npos;) s.replace(at, from.size(), png), at += png.size();
     return s;
   };
@@ -369,7 +369,7 @@ TEST(DrawingFilters, ExampleScriptsRunAndFollowTheBasesUnit) {
   EXPECT_EQ(logged_curves(run.output, "Line Drawing to Curves"), 6) << run.output;
 
   std::string relief = local(example("drawing_relief.mlx"));
-  const std::string sunk = std::string(RELIEFKIT_SOURCE_DIR) + "/examples/data/nested_drawing.sunk.json";
+  const std::string sunk = rktest::source_dir() + "/examples/data/nested_drawing.sunk.json";
   relief.replace(relief.find("name=\"interpretation\" value=\"\""), 30, "name=\"interpretation\" value=\"" + sunk + "\"");
   write_text(dir + "/relief.mlx", relief);
   run = run_meshlabserver({"-o", dir + "/sunk.ply", "-l", "0", "-m", "vq", "-s", dir + "/relief.mlx"});

@@ -1,10 +1,14 @@
 #include "mesh_files.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace rktest {
 namespace {
@@ -152,5 +156,56 @@ void write_ply(const std::string& path, const reliefkit::TriMesh& m) {
   }
   if (!out) throw std::runtime_error("cannot write " + path);
 }
+
+// Share of the length of `a` within `tol` of a segment of `b` (a uniform grid over b).
+double near_share(const MeshFile& a, const MeshFile& b, double tol) {
+  using reliefkit::Vec3;
+  auto key = [tol](const Vec3& p) {
+    return std::array<long, 3>{long(std::floor(p.x() / tol)), long(std::floor(p.y() / tol)), long(std::floor(p.z() / tol))};
+  };
+  struct Hash {
+    size_t operator()(const std::array<long, 3>& k) const { return size_t(k[0] * 73856093 ^ k[1] * 19349663 ^ k[2] * 83492791); }
+  };
+  std::unordered_map<std::array<long, 3>, std::vector<int>, Hash> grid;
+  const auto& bv = b.mesh.vertices;
+  for (size_t s = 0; s < b.edges.size(); ++s) {
+    const Vec3 &p = bv[b.edges[s][0]], &q = bv[b.edges[s][1]];
+    const int steps = 1 + int((p - q).norm() / tol);
+    for (int k = 0; k <= steps; ++k) {
+      auto c = key(p + (q - p) * (double(k) / steps));
+      auto& cell = grid[c];
+      if (cell.empty() || cell.back() != int(s)) cell.push_back(int(s));
+    }
+  }
+  auto dist = [&](const Vec3& x, int s) {
+    const Vec3 &p = bv[b.edges[s][0]], &q = bv[b.edges[s][1]];
+    const Vec3 d = q - p;
+    const double t = d.squaredNorm() > 0 ? std::clamp((x - p).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    return (x - (p + t * d)).norm();
+  };
+  double near = 0, total = 0;
+  for (const auto& e : a.edges) {
+    const Vec3 &p = a.mesh.vertices[e[0]], &q = a.mesh.vertices[e[1]];
+    const Vec3 mid = 0.5 * (p + q);
+    const double len = (p - q).norm();
+    total += len;
+    auto c = key(mid);
+    bool ok = false;
+    for (long dx = -1; dx <= 1 && !ok; ++dx)
+      for (long dy = -1; dy <= 1 && !ok; ++dy)
+        for (long dz = -1; dz <= 1 && !ok; ++dz) {
+          auto it = grid.find({c[0] + dx, c[1] + dy, c[2] + dz});
+          if (it == grid.end()) continue;
+          for (int s : it->second)
+            if (dist(mid, s) <= tol) {
+              ok = true;
+              break;
+            }
+        }
+    if (ok) near += len;
+  }
+  return total > 0 ? near / total : 1.0;
+}
+
 
 }  // namespace rktest

@@ -23,6 +23,10 @@ MeshFile read_mesh(const std::string& path);
 /// The edges of a saved curve layer as polylines (strength 1 everywhere), for scoring.
 reliefkit::Polylines polylines_of(const MeshFile& curves);
 
+/// Share of the length of the curves (edges) of `a` within `tol` of a segment of `b`: 1 when every
+/// piece of `a` lies near `b` (recall of `b` against `a`, or precision the other way round).
+double near_share(const MeshFile& a, const MeshFile& b, double tol);
+
 /// Writes a binary little-endian PLY with float coordinates (NaNs are written as they are).
 void write_ply(const std::string& path, const reliefkit::TriMesh& mesh);
 

@@ -80,5 +80,7 @@ struct MeshTopology {
   VertexRing border;  // vertex -> neighbours across boundary edges
 };
 MeshTopology mesh_topology(const TriMesh& mesh);
+/// The same from the vertex-face adjacency the caller built already.
+MeshTopology mesh_topology(const TriMesh& mesh, VertexFaces faces);
 
 }  // namespace reliefkit

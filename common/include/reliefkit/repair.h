@@ -41,7 +41,9 @@ struct RepairedMesh {
 RepairedMesh repair_for_computation(const TriMesh& mesh);
 
 /// The same on the mesh itself (no copy: what the MeshLab adapter uses on its own copy of the
-/// layer). `of_input` (optional) receives the input-vertex -> repaired-vertex map.
-RepairReport repair_in_place(TriMesh& mesh, std::vector<int>* of_input);
+/// layer). `of_input` (optional) receives the input-vertex -> repaired-vertex map; `faces`
+/// (optional) the repaired mesh's vertex-face adjacency, which the repair builds anyway (a
+/// Surface takes it, so that a run builds the adjacency once).
+RepairReport repair_in_place(TriMesh& mesh, std::vector<int>* of_input, VertexFaces* faces = nullptr);
 
 }  // namespace reliefkit
