@@ -194,7 +194,7 @@ TEST_P(RecordedOutputs, SameAsRecordedBeforeTheRefactor) {
   }
   if (std::getenv("RELIEFKIT_RECORD")) {
     std::filesystem::create_directories(source_dir() + "/tests/data/recorded");
-    std::ofstream(recorded_path(c)) << got.dump(0) << "\n";
+    std::ofstream(recorded_path(c)) << got.dump() << "\n";
     std::printf("recorded %s\n", recorded_path(c).c_str());
     return;
   }
