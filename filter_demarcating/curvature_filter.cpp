@@ -62,10 +62,11 @@ void apply(FilterCall& call) {
   const Length presmoothing = read_presmoothing(call);
   const auto q = static_cast<Quantity>(read_enum(call, "quality", "Vertex quality", kQuantities.size()));
   View view = view_of(call.mesh(), call.log);
+  const Surface surface = surface_of(view);
   CurvatureOptions opt;
   opt.estimator = estimator == 1 ? CurvatureEstimator::FaceFit : CurvatureEstimator::Jet;
   auto t1 = std::chrono::steady_clock::now();
-  ScaledCurvature sc = curvature_at_scale(view.mesh, presmoothing, opt.estimator, call.progress);
+  ScaledCurvature sc = curvature_at_scale(surface, presmoothing, opt.estimator, call.progress);
   opt.smoothing_scale = sc.presmoothing;
   const Curvature& c = sc.curvature;
   auto t2 = std::chrono::steady_clock::now();

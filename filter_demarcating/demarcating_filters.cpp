@@ -105,7 +105,8 @@ void apply_demarcating(FilterCall& call) {
   const bool quality = read_bool(call, "quality", "Vertex quality = curvature across");
   const double lift = read_lift(call);
   View view = view_of(call.mesh(), call.log);
-  DemarcatingResult r = compute_demarcating(view.mesh, p);
+  const Surface surface = surface_of(view);
+  DemarcatingResult r = compute_demarcating(surface, p);
 
   const QString label = derived_label(call.mesh(), "demarcating curves");
   add_curve_layer(call.doc, label, r.curves, vcg::Color4b(0, 0, 0, 255), &r.curvature.normal, lift * r.scale.edge);
@@ -142,16 +143,17 @@ void apply_shading(FilterCall& call) {
   const bool darken = read_bool(call, "darken", "Darken along demarcating curves");
   const double darkness = read_float(call, "darkness", "Curve darkness", 0, 1);
   View view = view_of(call.mesh(), call.log);
+  const Surface surface = surface_of(view);
   std::vector<double> grey;
   long long segments = 0;
   if (darken) {
-    DemarcatingResult r = compute_demarcating(view.mesh, p);
+    DemarcatingResult r = compute_demarcating(surface, p);
     grey = mean_curvature_shading(r.curvature, contrast);
     darken_along_curves(view.mesh, r.curves, darkness, grey);
     segments = static_cast<long long>(r.curves.segments.size());
     call.log(scale_summary(r.scale, r.noise, r.presmoothing, p.presmoothing));
   } else {
-    ScaledCurvature sc = curvature_at_scale(view.mesh, p.presmoothing, p.estimator, p.progress);
+    ScaledCurvature sc = curvature_at_scale(surface, p.presmoothing, p.estimator, p.progress);
     grey = mean_curvature_shading(sc.curvature, contrast);
     call.log(scale_summary(sc.scale, sc.noise, sc.presmoothing, p.presmoothing));
   }

@@ -247,13 +247,14 @@ void apply_coloring(FilterCall& call) {
   const double contrast = read_float(call, "contrast", "Contrast (lambda)", 1e-6, 1e6);
   const ProminentFieldParams p = read_field_parameters(call);
   View view = view_of(call.mesh(), call.log);
+  const Surface surface = surface_of(view);
   ColoringResult col;
   if (which == ColoringCurvature::Prominent) {
     const ProminentFieldResult f = compute_prominent_field(view.mesh, p);
     col = curvature_coloring(f.curvature, &f.field, f.scale.counts, which, contrast);
     log_field(call, f, p);
   } else {
-    const ScaledCurvature sc = begin_curve_filter(view.mesh, p);
+    const ScaledCurvature sc = begin_curve_filter(surface, p);
     col = curvature_coloring(sc.curvature, nullptr, sc.scale.counts, which, contrast);
     call.log(scale_summary(sc.scale, sc.noise, sc.presmoothing, p.presmoothing));
   }

@@ -107,7 +107,7 @@ void apply_relief(FilterCall& call) {
   const double lift = read_lift(call);
   p.progress = call.progress;
   View view = view_of(call.mesh(), call.log);
-  ReliefEdgeResult r = compute_relief_edges(view.mesh, p);
+  ReliefEdgeResult r = compute_relief_edges(surface_of(view), p);
   Polylines edges = r.edges;
   for (auto& s : edges.strength) s /= kDeg;  // layer quality in degrees
   const QString label = derived_label(call.mesh(), "relief edges");
@@ -165,14 +165,14 @@ void apply_base(FilterCall& call) {
   const Length scale = read_base_scale(call);
   const bool quality = read_bool(call, "quality", "Vertex quality = tilt against the base");
   View view = view_of(call.mesh(), call.log);
-  const MeshScale ms = mesh_scale(view.mesh);
+  const Surface surface = surface_of(view);
+  const MeshScale& ms = surface.scale();
   scale.check("Base surface scale", 0.5, 10000, ms.edge);
   BaseNormalOptions o;
   o.scale = scale.resolve(ms.edge, automatic_base_scale(ms));
   o.progress = call.progress;
-  VertexFaces vf = vertex_faces(view.mesh);
-  std::vector<Vec3> n = vertex_normals(view.mesh, vf);
-  BaseNormals b = estimate_base_normals(view.mesh, n, o);
+  const std::vector<Vec3>& n = surface.normals();
+  BaseNormals b = estimate_base_normals(surface, n, o);
   write_vertex_vectors(call.mesh().cm, view, "base_normal", b.normal);
   if (quality) {
     call.mesh().updateDataMask(MeshModel::MM_VERTQUALITY);
@@ -209,7 +209,7 @@ void apply_ridges(FilterCall& call) {
   const double lift = read_lift(call);
   p.progress = call.progress;
   View view = view_of(call.mesh(), call.log);
-  RidgeValleyResult r = compute_ridges_valleys(view.mesh, p);
+  RidgeValleyResult r = compute_ridges_valleys(surface_of(view), p);
   const QString lr = derived_label(call.mesh(), "ridges"), lv = derived_label(call.mesh(), "valleys");
   add_curve_layer(call.doc, lr, r.ridges, vcg::Color4b(200, 30, 30, 255), &r.curvature.normal, lift * r.scale.edge);
   add_curve_layer(call.doc, lv, r.valleys, vcg::Color4b(30, 30, 200, 255), &r.curvature.normal, lift * r.scale.edge);

@@ -14,8 +14,7 @@ counts() {  # script [meshlabserver input args...]
   local script="$1"; shift
   sed "s|value=\"examples/data/|value=\"$work/|g" "$here/examples/$script" >"$work/s.mlx"
   "$here/scripts/meshlabserver" "$@" -s "$work/s.mlx" 2>&1 |
-    grep -oE "Work counts: .*|^LOG: [0-9]+ (Applied filter|Filter) [^:]*|Applying filter [^.]*" |
-    sed -E 's/^Applying filter //' || true
+    sed -nE 's/^LOG: [0-9]+ Work counts of ([^:]*): (.*)/  \1|\2/p' | awk -F'|' '{ printf "  %-34s %s\n", $1, $2 }'
 }
 for s in curvature.mlx demarcating_shading.mlx relief_edges.mlx multiscale.mlx prominent.mlx; do
   echo "## $s on $(basename "$mesh")"

@@ -22,6 +22,8 @@ View view_of(MeshModel& m, const std::function<void(const QString&)>& log) {
   return v;
 }
 
+Surface surface_of(View& view) { return Surface::borrow(view.mesh, std::move(view.faces)); }
+
 void write_vertex_attribute(CMeshO& m, const View& v, const char* name, const std::vector<double>& values) {
   auto h = vcg::tri::Allocator<CMeshO>::GetPerVertexAttribute<Scalarm>(m, std::string(name));
   const int n = static_cast<int>(values.size());

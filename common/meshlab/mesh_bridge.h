@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "reliefkit/mesh.h"
+#include "reliefkit/surface.h"
 #include "reliefkit/vcg_adapter.h"
 #include "reliefkit/zero_crossings.h"
 
@@ -20,6 +21,10 @@ using View = VcgView<CMeshO>;
 /// what was repaired goes to `log`). Throws InputError if the layer holds only curves, has no
 /// faces or invalid coordinates (require_triangles).
 View view_of(MeshModel& m, const std::function<void(const QString&)>& log);
+
+/// The run's geometry context over the view's mesh (which must outlive it), with the adjacency the
+/// repair built: the filter's cores share it, so that a run computes its topology, scale and noise once.
+Surface surface_of(View& view);
 
 /// Writes a named per-vertex float attribute (created if missing, overwritten if present).
 /// Vertices not in the view keep their old value.

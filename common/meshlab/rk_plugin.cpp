@@ -56,7 +56,7 @@ bool ReliefKitPlugin::applyFilter(QAction* a, MeshDocument& md, const RichParame
     reliefkit::reset_work_counts();
     FilterCall call{md, md.mm(), par, cb, [this](const QString& line) { Log(qUtf8Printable(log_text(line))); }};
     s.apply(call);
-    if (std::getenv("RELIEFKIT_WORK_COUNTS")) call.log("Work counts: " + QString::fromStdString(reliefkit::work_counts().summary()));
+    if (std::getenv("RELIEFKIT_WORK_COUNTS")) call.log("Work counts of " + s.name + ": " + QString::fromStdString(reliefkit::work_counts().summary()));
     return true;
   } catch (const reliefkit::InputError& e) {
     return fail(QString::fromUtf8(e.what()));

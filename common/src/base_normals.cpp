@@ -19,6 +19,12 @@ double default_base_scale(const TriMesh& mesh) { return automatic_base_scale(mes
 
 BaseNormals estimate_base_normals(const TriMesh& mesh, const std::vector<Vec3>& n0, const BaseNormalOptions& opt) {
   require_triangles(mesh);
+  return estimate_base_normals(Surface::borrow(mesh), n0, opt);
+}
+
+BaseNormals estimate_base_normals(const Surface& surface, const std::vector<Vec3>& n0, const BaseNormalOptions& opt) {
+  const TriMesh& mesh = surface.mesh();
+  require_triangles(mesh);
   const int nv = mesh.n_vertices();
   if (int(n0.size()) != nv) throw InputError("base normals: one surface normal per vertex is needed");
   if (!(opt.scale > 0) || !std::isfinite(opt.scale)) throw InputError("base normals: the scale must be positive");
@@ -26,7 +32,7 @@ BaseNormals estimate_base_normals(const TriMesh& mesh, const std::vector<Vec3>& 
   if (opt.progress) opt.progress(0, "Base normals: system");
   LaplacianOptions lo;
   lo.clamp_negative = true;
-  LaplacianResult lap = opt.topology ? cotangent_laplacian(mesh, *opt.topology, lo) : cotangent_laplacian(mesh, lo);
+  LaplacianResult lap = surface.laplacian(lo);  // a copy: A is built in place below
   // A = M - t L. A vertex without area (isolated, or only in degenerate faces) has no coupling
   // either: its row becomes the identity and it keeps its own normal.
   Eigen::SparseMatrix<double>& A = lap.L;

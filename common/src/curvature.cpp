@@ -414,19 +414,16 @@ double feature_width(const TriMesh& mesh, const Curvature& c, const MeshScale& s
   return dq > 0 && std::isfinite(kq / dq) ? kq / dq : 0;
 }
 
-ScaledCurvature curvature_at_scale(const TriMesh& mesh, const Length& presmoothing, CurvatureEstimator estimator,
+ScaledCurvature curvature_at_scale(const Surface& surface, const Length& presmoothing, CurvatureEstimator estimator,
                                    Progress progress) {
+  const TriMesh& mesh = surface.mesh();
   require_triangles(mesh);
   ScaledCurvature out;
   report(progress, 0, "Vertex adjacency");
-  out.topology = std::make_shared<const MeshTopology>(mesh_topology(mesh));
+  out.topology = surface.shared_topology();
   report(progress, 2, "Scale and noise level");
-  out.scale = mesh_scale(mesh);
-  if (!(out.scale.edge > 0) || !std::isfinite(1 / out.scale.edge) || !std::isfinite(out.scale.object_size))
-    throw InputError("the mesh has no usable edge length (its edges have zero or non-finite length): nothing to "
-                     "measure. Remove degenerate faces first, e.g. Filters > Cleaning and Repairing > Remove Zero "
-                     "Area Faces and Merge Close Vertices.");
-  out.noise = estimate_noise(mesh, out.scale, kNoiseSamples, &out.topology->faces);
+  out.scale = surface.scale();
+  out.noise = surface.noise();  // refuses a mesh without usable edge length
   presmoothing.check("Pre-smoothing", 0, 100, out.scale.edge);
   out.presmoothing = presmoothing.resolve(out.scale.edge, automatic_presmoothing(out.noise, out.scale));
   CurvatureOptions co;
@@ -437,6 +434,12 @@ ScaledCurvature curvature_at_scale(const TriMesh& mesh, const Length& presmoothi
   co.topology = out.topology.get();
   out.curvature = compute_curvature(mesh, co);
   return out;
+}
+
+ScaledCurvature curvature_at_scale(const TriMesh& mesh, const Length& presmoothing, CurvatureEstimator estimator,
+                                   Progress progress) {
+  require_triangles(mesh);
+  return curvature_at_scale(Surface::borrow(mesh), presmoothing, estimator, progress);
 }
 
 Curvature compute_curvature(const TriMesh& input, const CurvatureOptions& opt) {

@@ -114,8 +114,13 @@ void DemarcatingParams::validate() const {
 }
 
 DemarcatingResult compute_demarcating(const TriMesh& mesh, const DemarcatingParams& p) {
+  return compute_demarcating(Surface::borrow(mesh), p);
+}
+
+DemarcatingResult compute_demarcating(const Surface& surface, const DemarcatingParams& p) {
+  const TriMesh& mesh = surface.mesh();
   DemarcatingResult r;
-  static_cast<ScaledCurvature&>(r) = begin_curve_filter(mesh, p);
+  static_cast<ScaledCurvature&>(r) = begin_curve_filter(surface, p);
   r.min_length = p.min_length_edges * r.scale.edge;
   if (p.progress) p.progress(85, "Curvature gradient");
   r.gradient = curvature_gradient(r.curvature);

@@ -65,7 +65,7 @@ MultiscaleRidgeValleys multiscale_ridges_valleys(const TriMesh& mesh, OptimalSca
   TriMesh smoothed = optimally_smoothed(mesh, opt, r.scale);
   params.presmoothing = Length::in_edges(0);
   RidgeValleyResult& c = r.curves;
-  static_cast<ScaledCurvature&>(c) = begin_curve_filter(smoothed, params);
+  static_cast<ScaledCurvature&>(c) = begin_curve_filter(Surface::borrow(smoothed), params);
   c.min_length = params.min_length_edges * r.scale.scale.edge;
   if (params.progress) params.progress(95, "Multi-scale ridges and valleys");
   // All crossings, their strengths normalised as in the scale selection, so that a fine and a

@@ -266,9 +266,14 @@ void select_edges(const ReliefEdgeParams& p, const Polylines& all, const std::ve
 }  // namespace
 
 ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParams& p) {
+  return compute_relief_edges(Surface::borrow(mesh), p);
+}
+
+ReliefEdgeResult compute_relief_edges(const Surface& surface, const ReliefEdgeParams& p) {
+  const TriMesh& mesh = surface.mesh();
   ReliefEdgeResult r;
   // Step 1: scale, noise, pre-smoothing and curvature with derivatives (shared first stage).
-  static_cast<ScaledCurvature&>(r) = begin_curve_filter(mesh, p);
+  static_cast<ScaledCurvature&>(r) = begin_curve_filter(surface, p);
   resolve_lengths(mesh, p, r);
   const Curvature& c = r.curvature;
 
@@ -283,8 +288,7 @@ ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParam
   } else {
     BaseNormalOptions bo;
     bo.scale = r.base_scale;
-    bo.topology = r.topology.get();
-    r.base = estimate_base_normals(mesh, c.normal, bo);
+    r.base = estimate_base_normals(surface, c.normal, bo);
   }
 
   if (p.progress) p.progress(80, "Edge directions");

@@ -46,8 +46,13 @@ void RidgeValleyParams::validate() const {
 }
 
 RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyParams& p) {
+  return compute_ridges_valleys(Surface::borrow(mesh), p);
+}
+
+RidgeValleyResult compute_ridges_valleys(const Surface& surface, const RidgeValleyParams& p) {
+  const TriMesh& mesh = surface.mesh();
   RidgeValleyResult r;
-  static_cast<ScaledCurvature&>(r) = begin_curve_filter(mesh, p);
+  static_cast<ScaledCurvature&>(r) = begin_curve_filter(surface, p);
   r.min_length = p.min_length_edges * r.scale.edge;
   if (p.progress) p.progress(90, "Ridges and valleys");
   std::vector<double> kmax(r.curvature.k1.size()), kmin(r.curvature.k2.size());

@@ -31,8 +31,10 @@ Surface::Surface(TriMesh mesh, VertexFaces faces)
 Surface::Surface(std::shared_ptr<const TriMesh> mesh, std::shared_ptr<Run> run)
     : mesh_(std::move(mesh)), run_(std::move(run)), at_(std::make_shared<Positions>()) {}
 
-Surface Surface::borrow(const TriMesh& mesh) {
-  return Surface(std::shared_ptr<const TriMesh>(&mesh, [](const TriMesh*) {}), std::make_shared<Run>());
+Surface Surface::borrow(const TriMesh& mesh, VertexFaces faces) {
+  Surface s(std::shared_ptr<const TriMesh>(&mesh, [](const TriMesh*) {}), std::make_shared<Run>());
+  s.run_->given_faces = std::move(faces);
+  return s;
 }
 
 std::shared_ptr<const MeshTopology> Surface::shared_topology() const {

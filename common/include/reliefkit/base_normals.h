@@ -16,6 +16,7 @@
 #include "reliefkit/mesh.h"
 #include "reliefkit/scale.h"
 #include "reliefkit/solvers.h"
+#include "reliefkit/surface.h"
 
 namespace reliefkit {
 
@@ -25,7 +26,6 @@ struct BaseNormalOptions {
   double tolerance = 1e-3;    // relative residual asked of the solve
   SolverMethod method = SolverMethod::Auto;
   Progress progress = nullptr;
-  const MeshTopology* topology = nullptr;  // the mesh's connectivity, when the caller has it
 };
 
 struct BaseNormals {
@@ -35,6 +35,8 @@ struct BaseNormals {
 };
 
 /// Base normals from the surface normals (one per vertex, e.g. Curvature::normal).
+BaseNormals estimate_base_normals(const Surface& surface, const std::vector<Vec3>& surface_normals,
+                                  const BaseNormalOptions& options);
 BaseNormals estimate_base_normals(const TriMesh& mesh, const std::vector<Vec3>& surface_normals,
                                   const BaseNormalOptions& options);
 

@@ -24,6 +24,7 @@
 
 #include "reliefkit/mesh.h"
 #include "reliefkit/scale.h"
+#include "reliefkit/surface.h"
 
 namespace reliefkit {
 
@@ -91,16 +92,19 @@ struct ScaledCurvature {
   double presmoothing = 0;  // used, mesh units
   Curvature curvature;
 };
+/// The surface's topology, scale and noise come from the run's Surface (computed there once).
+ScaledCurvature curvature_at_scale(const Surface& surface, const Length& presmoothing, CurvatureEstimator estimator,
+                                   Progress progress);
 ScaledCurvature curvature_at_scale(const TriMesh& mesh, const Length& presmoothing, CurvatureEstimator estimator,
                                    Progress progress);
 
 /// The start every curve filter shares: its parameters checked (Params::validate), the mesh
 /// checked, then curvature_at_scale with the parameters' pre-smoothing, estimator and progress.
 template <class Params>
-ScaledCurvature begin_curve_filter(const TriMesh& mesh, const Params& params) {
+ScaledCurvature begin_curve_filter(const Surface& surface, const Params& params) {
   params.validate();
-  require_triangles(mesh);
-  return curvature_at_scale(mesh, params.presmoothing, params.estimator, params.progress);
+  require_triangles(surface.mesh());
+  return curvature_at_scale(surface, params.presmoothing, params.estimator, params.progress);
 }
 
 /// The width of the surface's features (mesh units), from the curvature itself: the ratio of the

@@ -91,6 +91,7 @@ double noise_curve_strength(const NoiseEstimate& noise, double presmoothing_edge
 
 /// Curvature (with pre-smoothing), curvature gradient, curves above the threshold.
 /// Throws InputError for meshes require_triangles rejects.
+DemarcatingResult compute_demarcating(const Surface& surface, const DemarcatingParams& params = {});
 DemarcatingResult compute_demarcating(const TriMesh& mesh, const DemarcatingParams& params = {});
 
 /// Mean-curvature shading for illustration (thesis 3.6, fig. 3.11 e): grey level

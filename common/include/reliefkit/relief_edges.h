@@ -116,6 +116,7 @@ constexpr double kBaseScaleWidths = 9.0;
 /// Largest turn (radians) a gap-bridging link may make against the directions of the two ends.
 constexpr double kLinkTurn = 0.78539816339744831;
 
+ReliefEdgeResult compute_relief_edges(const Surface& surface, const ReliefEdgeParams& params = {});
 ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParams& params = {});
 
 }  // namespace reliefkit

@@ -38,6 +38,7 @@ struct RidgeValleyResult : ScaledCurvature {  // scale, noise, pre-smoothing use
 Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength,
                       std::vector<double>* all_strengths = nullptr);
 
+RidgeValleyResult compute_ridges_valleys(const Surface& surface, const RidgeValleyParams& params = {});
 RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyParams& params = {});
 
 }  // namespace reliefkit

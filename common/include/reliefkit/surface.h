@@ -26,7 +26,7 @@ class Surface {
   /// `faces`: its vertex-face adjacency when the caller built it already (the repair does).
   explicit Surface(TriMesh mesh, VertexFaces faces = {});
   /// A Surface over a mesh the caller keeps alive for the Surface's lifetime (no copy).
-  static Surface borrow(const TriMesh& mesh);
+  static Surface borrow(const TriMesh& mesh, VertexFaces faces = {});
 
   const TriMesh& mesh() const { return *mesh_; }
   int n_vertices() const { return mesh_->n_vertices(); }

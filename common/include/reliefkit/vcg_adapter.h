@@ -19,6 +19,7 @@ struct VcgView {
   /// written to them too.
   std::vector<std::pair<int, typename MeshT::VertexPointer>> also;
   RepairReport repair;
+  VertexFaces faces;  // after repair_view: the repaired mesh's vertex-face adjacency (for its Surface)
 };
 
 /// Calls f(i, vcg vertex) for every vcg vertex of the view: TriMesh vertex i's own and those
@@ -34,7 +35,7 @@ void for_each_vertex(const VcgView<MeshT>& view, F f) {
 template <class MeshT>
 void repair_view(VcgView<MeshT>& view) {
   std::vector<int> of_input;
-  view.repair = repair_in_place(view.mesh, &of_input);
+  view.repair = repair_in_place(view.mesh, &of_input, &view.faces);
   if (view.repair.welded_vertices == 0) return;  // the vertices are the view's own, in order
   std::vector<typename MeshT::VertexPointer> first(view.mesh.vertices.size(), nullptr);
   view.also.clear();
