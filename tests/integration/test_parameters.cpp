@@ -30,18 +30,17 @@ struct ScriptOutputs {
   bool colours = false;           // compare the vertex colours of layer 0
 };
 
+void PrintTo(const ScriptOutputs& s, std::ostream* os) { *os << s.script; }
+
 }  // namespace
 
-TEST(PortableParameters, EveryExampleScriptGivesTheSameResultInAnyUnit) {
-  const ScriptOutputs scripts[] = {{"curvature_colors.mlx", {}, true},
-                                   {"demarcating_shading.mlx", {1}, true},
-                                   {"relief_edges.mlx", {1, 2, 3}, false},
-                                   {"curvature.mlx", {}, false},
-                                   {"multiscale.mlx", {1, 2, 3}, false},
-                                   {"prominent.mlx", {}, true}};
+// One test per example script, so that ctest runs them side by side.
+class EveryExampleScript : public ::testing::TestWithParam<ScriptOutputs> {};
+
+TEST_P(EveryExampleScript, GivesTheSameResultInAnyUnit) {
+  const ScriptOutputs& sc = GetParam();
   const MeshFile coin = read_mesh(kCoin);
   const double edge = reliefkit::mesh_scale(coin.mesh).edge;
-  for (const auto& sc : scripts) {
     ASSERT_TRUE(std::filesystem::exists(rktest::source_dir() + "/examples/" + sc.script)) << sc.script;
     std::map<double, std::vector<MeshFile>> curves;
     std::map<double, MeshFile> surface;
@@ -86,8 +85,19 @@ TEST(PortableParameters, EveryExampleScriptGivesTheSameResultInAnyUnit) {
         EXPECT_LE(share, 0.01) << sc.script << " x" << f;
       }
     }
-  }
 }
+
+INSTANTIATE_TEST_SUITE_P(PortableParameters, EveryExampleScript,
+                         ::testing::Values(ScriptOutputs{"curvature_colors.mlx", {}, true},
+                                           ScriptOutputs{"demarcating_shading.mlx", {1}, true},
+                                           ScriptOutputs{"relief_edges.mlx", {1, 2, 3}, false},
+                                           ScriptOutputs{"curvature.mlx", {}, false},
+                                           ScriptOutputs{"multiscale.mlx", {1, 2, 3}, false},
+                                           ScriptOutputs{"prominent.mlx", {}, true}),
+                         [](const ::testing::TestParamInfo<ScriptOutputs>& i) {
+                           std::string n = i.param.script.substr(0, i.param.script.find('.'));
+                           return n;
+                         });
 
 TEST(PortableParameters, OldScriptsWithAbsoluteLengthsStillRun) {
   const std::string dir = temp_dir("old_script");
