@@ -124,10 +124,11 @@ TEST(MultiscaleFilters, RidgesAndValleysMatchTheCoreAndFindBothValleys) {
   ASSERT_GT(valleys.edges.size(), 50u);
   const reliefkit::Polylines server = polylines_of(valleys);
   const AxialScore sc = score_axial(c, server, {AxialFeature::Valley}, 0.005, 3 * c.edge);
-  std::printf("valleys: recall fine %.3f coarse %.3f, precision %.3f\n", sc.recall[0], sc.recall[1], sc.precision);
-  EXPECT_GE(sc.recall[0], 0.9);
-  EXPECT_GE(sc.recall[1], 0.9);
-  EXPECT_GE(sc.precision, 0.8);
+  std::printf("valleys: recall fine %.4f coarse %.4f, precision %.4f\n", sc.recall[0], sc.recall[1], sc.precision);
+  // Measured: recall 1.000 / 1.000, precision 0.984 (was asserted 0.9 / 0.9 / 0.8).
+  EXPECT_GE(sc.recall[0], 0.99);
+  EXPECT_GE(sc.recall[1], 0.99);
+  EXPECT_GE(sc.precision, 0.95);
   // The same curves as the core computes on the same (saved) mesh.
   const reliefkit::MultiscaleRidgeValleys core = reliefkit::multiscale_ridges_valleys(read_mesh(dir + "/in.ply").mesh, {});
   // Each one's points lie on the other's segments (the file stores single precision).
@@ -151,9 +152,10 @@ TEST(MultiscaleFilters, ReliefEdgesOnANoisyCylinder) {
   MeshFile edges = read_mesh(dir + "/edges.obj");
   ASSERT_GT(edges.edges.size(), 100u);
   Detection d = score(r, polylines_of(edges), r.mean_edge);
-  std::printf("relief edges: recall %.3f precision %.3f\n", d.recall, d.precision);
-  EXPECT_GE(d.recall, 0.9);
-  EXPECT_GE(d.precision, 0.9);
+  std::printf("relief edges: recall %.4f precision %.4f\n", d.recall, d.precision);
+  // Measured: 1.000 / 1.000 (was asserted 0.9 / 0.9).
+  EXPECT_GE(d.recall, 0.99);
+  EXPECT_GE(d.precision, 0.99);
 }
 
 TEST(MultiscaleFilters, TooSmallAMeshStopsWithAMessageAndChangesNothing) {

@@ -66,6 +66,19 @@ std::vector<reliefkit::Vec2> nested_truth_samples(double s) {
   return out;
 }
 
+int nested_true_level(const reliefkit::Vec2& p, bool right_half_higher, double s, double clearance) {
+  using reliefkit::Vec2;
+  if (nested_truth_distance(p, s) < clearance) return -1;
+  const Vec2 q = p / s;  // in the drawing at scale 1
+  if (q.x() < 40 || q.x() > 560 || q.y() < 40 || q.y() > 560) return -1;  // the paper
+  if ((q - Vec2(160, 160)).norm() < 70) return 2;
+  const double ring = (q - Vec2(420, 170)).norm();
+  if (ring < 40) return 3;
+  if (ring < 90) return 2;
+  if (q.x() > 120 && q.x() < 460 && q.y() > 340 && q.y() < 480) return (q.x() > 290) == right_half_higher ? 3 : 2;
+  return 1;
+}
+
 void add_shading(cv::Mat& img, cv::Rect area, double stroke, double spacing) {
   // Hatching on the left half, stippling on the right half.
   const int mid = area.x + area.width / 2;
@@ -117,6 +130,27 @@ LevelFit fit_levels(const reliefkit::TriMesh& grid, double pixel_size, const rel
   for (const auto& [lv, h] : pairs) s2 += (h - f.scale * lv) * (h - f.scale * lv);
   f.rms_steps = std::sqrt(s2 / double(pairs.size())) / (f.scale > 0 ? f.scale : 1);
   return f;
+}
+
+TrueLevelError true_level_error(const std::vector<reliefkit::Vec2>& pixel, const reliefkit::DrawingRelief& r,
+                                double step_height, double scale) {
+  TrueLevelError best;
+  best.rms = 1e300;
+  for (bool right_higher : {false, true}) {
+    TrueLevelError e;
+    e.right_half_higher = right_higher;
+    double s2 = 0;
+    for (size_t v = 0; v < pixel.size(); ++v) {
+      if (r.in_margin[v] || !std::isfinite(pixel[v].x())) continue;
+      const int level = nested_true_level(pixel[v], right_higher, scale);
+      if (level < 1) continue;
+      const double err = r.height[v] / step_height - level;
+      s2 += err * err, e.worst = std::max(e.worst, std::abs(err)), ++e.samples;
+    }
+    e.rms = e.samples ? std::sqrt(s2 / double(e.samples)) : 1e300;
+    if (e.rms < best.rms) best = e;
+  }
+  return best;
 }
 
 }  // namespace rktest

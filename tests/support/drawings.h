@@ -19,6 +19,12 @@ cv::Mat nested_drawing(double scale = 1, int line_px = 2);
 double nested_truth_distance(const reliefkit::Vec2& p, double scale = 1);
 std::vector<reliefkit::Vec2> nested_truth_samples(double scale = 1);
 
+/// The level of the part of nested_drawing(scale) at p (image px) as it was drawn: the object 1,
+/// the disc and the ring 2, the inner disc 3, the rectangle's halves 2 and 3 (which one is higher
+/// the drawing does not say: `right_half_higher`); -1 on the paper around the object or within
+/// `clearance` px of a drawn shape.
+int nested_true_level(const reliefkit::Vec2& p, bool right_half_higher, double scale = 1, double clearance = 3);
+
 /// Adds shading to a drawing as illustrators do: hatching (short parallel strokes `stroke_px` long,
 /// rows 2 x `spacing_px` apart) over the left half of `area`, stippling (dots every `spacing_px`)
 /// over its right half; neither must become curves.
@@ -43,5 +49,17 @@ struct LevelFit {
 };
 LevelFit fit_levels(const reliefkit::TriMesh& grid, double pixel_size, const reliefkit::DrawingRelief& relief,
                     const reliefkit::DrawingInterpretation& interpretation, cv::Point paper);
+
+/// A relief of nested_drawing(scale) against the levels it was drawn with (nested_true_level), on
+/// its free surface (outside the margins; the paper left out): per vertex the height in steps minus
+/// the true level. `pixel` gives each vertex's position in the drawing (px); the better of the two
+/// readings of the rectangle's halves is taken.
+struct TrueLevelError {
+  double rms = 0, worst = 0;  // steps
+  long samples = 0;
+  bool right_half_higher = false;
+};
+TrueLevelError true_level_error(const std::vector<reliefkit::Vec2>& pixel, const reliefkit::DrawingRelief& relief,
+                                double step_height, double scale = 1);
 
 }  // namespace rktest

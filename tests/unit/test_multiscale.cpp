@@ -30,7 +30,7 @@ struct Score {
 };
 
 void print(const Score& r) {
-  std::printf("  %-22s recall fine %.3f coarse %.3f  precision %.3f  F1 %.3f\n", r.name, r.fine, r.coarse,
+  std::printf("  %-22s recall fine %.4f coarse %.4f  precision %.4f  F1 %.4f\n", r.name, r.fine, r.coarse,
               r.precision, r.f1);
 }
 
@@ -83,9 +83,10 @@ TEST(Multiscale, RidgesAndValleysOfWidthsFourteenTimesApartOnANoisyCylinder) {
     std::snprintf(name, sizeof name, "single, %.0f edge lengths", s);
     best = std::max(best, evaluate(name, r.ridges, r.valleys).f1);
   }
-  EXPECT_GE(multi.fine, 0.95);
-  EXPECT_GE(multi.coarse, 0.95);
-  EXPECT_GE(multi.precision, 0.8);
+  // Measured: recall 0.994 / 1.000, precision 0.974 (was asserted 0.95 / 0.95 / 0.8).
+  EXPECT_GE(multi.fine, 0.98);
+  EXPECT_GE(multi.coarse, 0.99);
+  EXPECT_GE(multi.precision, 0.93);
   EXPECT_GE(multi.f1, best + 0.15);
 }
 
@@ -138,10 +139,10 @@ TEST(Multiscale, RefusesMeshesWithoutFacesAndTooSmallForTheScales) {
 
 // Multi-scale relief edges against the known step line of the noisy disc reliefs on a cylinder
 // (a raised and a sunken disc, tanh width 2.5 edge lengths): measured recall / precision
-// 0.971 / 0.965 at 20 % noise, 0.961 / 0.960 at 10 %, 0.987 / 0.979 clean (single scale at the
-// automatic pre-smoothing: 1.000 / 1.000). The harder case — a sharp small step and a wide
-// soft step on one noisy cylinder, multi-scale ahead of every single scale — is not met yet: it is
-// measured by bench/bench_multiscale and discussed in docs/multiscale.md.
+// 1.0000 / 1.0000 at 0, 10 and 20 % noise (asserted: 0.99; it was 0.9, from when 0.96-0.99 was
+// measured). The harder case — a sharp small step and a wide soft step on one noisy
+// cylinder, multi-scale ahead of every single scale — is not met yet: it is measured by
+// bench/bench_multiscale and discussed in docs/multiscale.md.
 TEST(Multiscale, ReliefEdgesFollowTheStepsOfNoisyDiscReliefs) {
   for (double noise : {0.0, 0.1, 0.2}) {
     rktest::ReliefShape s;
@@ -149,9 +150,9 @@ TEST(Multiscale, ReliefEdgesFollowTheStepsOfNoisyDiscReliefs) {
     const rktest::Relief r = rktest::discs_on_cylinder(s);
     const MultiscaleReliefEdges ms = multiscale_relief_edges(r.mesh, {});
     const rktest::Detection d = rktest::score(r, ms.curves.edges, r.mean_edge);
-    std::printf("noise %.0f %%: recall %.3f precision %.3f\n", 100 * noise, d.recall, d.precision);
-    EXPECT_GE(d.recall, 0.9) << noise;
-    EXPECT_GE(d.precision, 0.9) << noise;
+    std::printf("noise %.0f %%: recall %.4f precision %.4f\n", 100 * noise, d.recall, d.precision);
+    EXPECT_GE(d.recall, 0.99) << noise;
+    EXPECT_GE(d.precision, 0.99) << noise;
   }
 }
 
@@ -184,9 +185,11 @@ TEST(Multiscale, ReliefEdgesOfASharpNarrowBandAndAWideSoftStep) {
     std::printf("noise %.0f %% (fine: the narrow band, coarse: the soft one)\n", 100 * noise);
     const MultiscaleReliefEdges ms = multiscale_relief_edges(cyl.mesh, {});
     const Score multi = evaluate("multi-scale", ms.curves.edges);
-    EXPECT_GE(multi.fine, 0.95) << noise;
-    EXPECT_GE(multi.coarse, 0.95) << noise;
-    EXPECT_GE(multi.precision, 0.8) << noise;
+    // Measured: recall 1.000 / 1.000 at both noise levels, precision 1.000 at 20 %, 0.978 at 2 %
+    // (was asserted 0.95 / 0.95 / 0.8).
+    EXPECT_GE(multi.fine, 0.99) << noise;
+    EXPECT_GE(multi.coarse, 0.99) << noise;
+    EXPECT_GE(multi.precision, noise > 0.1 ? 0.99 : 0.93) << noise;
     if (noise < 0.1) continue;  // with little noise one fine scale reads both (below)
     double best = 0;
     for (double s : {1.0, 1.5, 2.0, 3.0, 4.0, 6.0}) {
@@ -217,4 +220,31 @@ TEST(Multiscale, AutomaticLargestScaleFollowsTheObjectsSize) {
     EXPECT_NEAR(s.levels.back() / s.scale.edge, expected, 1e-6 * expected);
     EXPECT_TRUE(s.max_scale_lowered);
   }
+}
+
+// The normalisation of a curve point's strength (t^γ f, t = σ², as in the scale selection) takes
+// the smaller scale of its edge's two ends: where the scale changes across an edge (a fine feature
+// beside smooth ground) the larger one would amplify the fine side's curvature by (σ_max / σ_min)^2γ.
+// Known answers for an edge from 2 to 6 edge lengths. (The curve tests above cannot tell: on the
+// grooved plate at 10 % noise 132 of the 542 valley points lie on edges whose ends' scales differ,
+// by up to 1.35 x, yet the max kept the same curves: the grooves' strengths, up to 1.58, are far
+// above the threshold, 0.113; at 30 % noise it added 41 points, 4 of them off the grooves.)
+TEST(Multiscale, CurveStrengthIsNormalisedAtTheSmallerScaleOfItsEdge) {
+  OptimalScale s;
+  s.scale.edge = 0.01;
+  s.sigma = {0.02, 0.06, 0.06};  // 2, 6 and 6 edge lengths
+  Polylines c;
+  c.points = {Vec3::Zero(), Vec3::Zero()};
+  c.point_edge = {{0, 1}, {1, 2}};
+  c.point_weight = {0.8, 0.5};  // near the coarse end: still the fine end's scale
+  c.strength = {3.0, 3.0};
+  Polylines c2 = c;
+  normalise_curve_strengths(c, s, 1.0, 1);   // (σ/h)^2 h
+  normalise_curve_strengths(c2, s, 0.5, 2);  // (σ/h) h^2
+  std::printf("normalised strengths: %.6g %.6g (gamma 1, power 1), %.6g %.6g (gamma 0.5, power 2)\n", c.strength[0],
+              c.strength[1], c2.strength[0], c2.strength[1]);
+  EXPECT_NEAR(c.strength[0], 3.0 * 4 * 0.01, 1e-12);  // the larger scale: 3 x 36 x 0.01, 9 x as much
+  EXPECT_NEAR(c.strength[1], 3.0 * 36 * 0.01, 1e-12);
+  EXPECT_NEAR(c2.strength[0], 3.0 * 2 * 1e-4, 1e-15);
+  EXPECT_NEAR(c2.strength[1], 3.0 * 6 * 1e-4, 1e-15);
 }

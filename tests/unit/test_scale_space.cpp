@@ -57,6 +57,65 @@ TEST(ScaleSpace, GaussianBumpFlattensLikeAGaussianConvolution) {
   }
 }
 
+namespace {
+// The bump's plate with a small flat plate touching it at one corner only: that corner is on two
+// boundary loops (a pinch, as where two parts of a scan touch), which the scale space leaves in
+// place; its neighbours on either loop diffuse along it and take it as a known value.
+TriMesh plate_with_a_pinch(int n) {
+  TriMesh m = rktest::height_field(bump, 1.0, n, 0.3, 4);
+  const int corner = m.n_vertices() - 1;  // (1, 1)
+  TriMesh small = rktest::height_field([](double, double) { return 0.0; }, 0.25, 10);
+  const int base = m.n_vertices() - 1;  // small's vertex 0, (-0.25, -0.25) + (1.25, 1.25), is the corner
+  for (size_t v = 1; v < small.vertices.size(); ++v) m.vertices.push_back(small.vertices[v] + Vec3(1.25, 1.25, 0));
+  for (const auto& f : small.faces) {
+    std::array<int, 3> g;
+    for (int k = 0; k < 3; ++k) g[size_t(k)] = f[size_t(k)] == 0 ? corner : base + f[size_t(k)];
+    m.faces.push_back(g);
+  }
+  return m;
+}
+}  // namespace
+
+// Every vertex, not just the bump's peak: the heights follow the Gaussian convolution over the
+// whole bump, and the diffusion commutes with a translation of the mesh (the Laplacian of a
+// constant is zero: every row of the operator, its terms towards boundary and pinched vertices
+// included, sums to zero), vertex by vertex.
+TEST(ScaleSpace, EveryVertexFollowsTheHeatEquationAndMovesWithTheMesh) {
+  const TriMesh m = plate_with_a_pinch(100);
+  const Vec3 shift(0.3, -0.7, 0.2);
+  TriMesh moved = m;
+  for (auto& p : moved.vertices) p += shift;
+  const double sigma = 0.08, var = kS0 * kS0 + sigma * sigma;
+  using Stepping = ScaleSpaceOptions::Stepping;
+  for (Stepping mode : {Stepping::Implicit, Stepping::Explicit}) {
+    ScaleSpaceOptions o;
+    o.substeps = 8;
+    o.stepping = mode;
+    std::vector<Vec3> a, b;
+    const ScaleSpaceReport rep = scale_space(m, {sigma}, o, [&](int, const TriMesh& s) { a = s.vertices; });
+    scale_space(moved, {sigma}, o, [&](int, const TriMesh& s) { b = s.vertices; });
+    EXPECT_EQ(rep.fixed_vertices, 1);  // the pinch
+    double worst_move = 0, worst_height = 0;
+    for (int v = 0; v < m.n_vertices(); ++v) {
+      worst_move = std::max(worst_move, (b[size_t(v)] - shift - a[size_t(v)]).norm());
+      const Vec3& p = a[size_t(v)];
+      if (p.head<2>().norm() < 0.5)
+        worst_height = std::max(worst_height, std::abs(p.z() - kAmp * kS0 * kS0 / var * std::exp(-p.head<2>().squaredNorm() / (2 * var))));
+    }
+    std::printf("%s: every vertex within 0.5 of the bump: largest height error %.2e (%.2f %% of the peak); "
+                "translated mesh: largest difference %.2e\n",
+                mode == Stepping::Implicit ? "implicit" : "explicit", worst_height, 100 * worst_height / (kAmp * kS0 * kS0 / var),
+                worst_move);
+    // Measured: heights 6.3e-5 off implicitly (2.1 % of the peak: backward Euler's sharper kernel,
+    // as above), 3.6e-6 explicitly (0.12 %); the translated mesh 2.8e-15 apart (rounding; the
+    // bound leaves room for other machines'). With the sign of the interior's terms towards
+    // boundary vertices flipped: 1.5 apart and heights 98 % of the peak off; with that of the
+    // boundary loop's terms towards the pinch: 1.25.
+    EXPECT_LT(worst_height, mode == Stepping::Implicit ? 2e-4 : 1.5e-5);
+    EXPECT_LT(worst_move, 1e-12);
+  }
+}
+
 TEST(ScaleSpace, UnitSphereShrinksLikeTheHeatEquationSays) {
   const TriMesh m = rktest::sphere(1.0, 5);
   const std::vector<double> sigmas = {0.1, 0.3};
