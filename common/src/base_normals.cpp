@@ -18,13 +18,12 @@ double default_base_scale(const TriMesh& mesh) { return automatic_base_scale(mes
 
 
 BaseNormals estimate_base_normals(const TriMesh& mesh, const std::vector<Vec3>& n0, const BaseNormalOptions& opt) {
-  require_triangles(mesh);
   return estimate_base_normals(Surface::borrow(mesh), n0, opt);
 }
 
 BaseNormals estimate_base_normals(const Surface& surface, const std::vector<Vec3>& n0, const BaseNormalOptions& opt) {
   const TriMesh& mesh = surface.mesh();
-  require_triangles(mesh);
+  surface.require_triangles();
   const int nv = mesh.n_vertices();
   if (int(n0.size()) != nv) throw InputError("base normals: one surface normal per vertex is needed");
   if (!(opt.scale > 0) || !std::isfinite(opt.scale)) throw InputError("base normals: the scale must be positive");

@@ -414,10 +414,13 @@ double feature_width(const TriMesh& mesh, const Curvature& c, const MeshScale& s
   return dq > 0 && std::isfinite(kq / dq) ? kq / dq : 0;
 }
 
+// compute_curvature on a mesh its caller has checked (require_triangles).
+static Curvature compute_checked_curvature(const TriMesh& input, const CurvatureOptions& opt);
+
 ScaledCurvature curvature_at_scale(const Surface& surface, const Length& presmoothing, CurvatureEstimator estimator,
                                    Progress progress) {
   const TriMesh& mesh = surface.mesh();
-  require_triangles(mesh);
+  surface.require_triangles();
   ScaledCurvature out;
   report(progress, 0, "Vertex adjacency");
   out.topology = surface.shared_topology();
@@ -432,18 +435,21 @@ ScaledCurvature curvature_at_scale(const Surface& surface, const Length& presmoo
   co.derivatives = true;
   co.progress = progress;
   co.topology = out.topology.get();
-  out.curvature = compute_curvature(mesh, co);
+  out.curvature = compute_checked_curvature(mesh, co);  // the mesh is checked above
   return out;
 }
 
 ScaledCurvature curvature_at_scale(const TriMesh& mesh, const Length& presmoothing, CurvatureEstimator estimator,
                                    Progress progress) {
-  require_triangles(mesh);
   return curvature_at_scale(Surface::borrow(mesh), presmoothing, estimator, progress);
 }
 
 Curvature compute_curvature(const TriMesh& input, const CurvatureOptions& opt) {
   require_triangles(input);
+  return compute_checked_curvature(input, opt);
+}
+
+static Curvature compute_checked_curvature(const TriMesh& input, const CurvatureOptions& opt) {
   MeshTopology own;
   if (!opt.topology) {
     report(opt.progress, 0, "Vertex adjacency");

@@ -9,7 +9,7 @@
 namespace reliefkit {
 
 struct Surface::Run {
-  std::once_flag topology_once, scale_once, noise_once;
+  std::once_flag checked_once, topology_once, scale_once, noise_once;
   VertexFaces given_faces;
   std::shared_ptr<const MeshTopology> topology;
   MeshScale scale;
@@ -35,6 +35,11 @@ Surface Surface::borrow(const TriMesh& mesh, VertexFaces faces) {
   Surface s(std::shared_ptr<const TriMesh>(&mesh, [](const TriMesh*) {}), std::make_shared<Run>());
   s.run_->given_faces = std::move(faces);
   return s;
+}
+
+void Surface::require_triangles() const {
+  // A throwing call leaves the flag unset, so an invalid mesh is refused on every ask.
+  std::call_once(run_->checked_once, [this] { reliefkit::require_triangles(*mesh_); });
 }
 
 std::shared_ptr<const MeshTopology> Surface::shared_topology() const {

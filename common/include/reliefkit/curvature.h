@@ -103,7 +103,6 @@ ScaledCurvature curvature_at_scale(const TriMesh& mesh, const Length& presmoothi
 template <class Params>
 ScaledCurvature begin_curve_filter(const Surface& surface, const Params& params) {
   params.validate();
-  require_triangles(surface.mesh());
   return curvature_at_scale(surface, params.presmoothing, params.estimator, params.progress);
 }
 

@@ -31,6 +31,9 @@ class Surface {
   const TriMesh& mesh() const { return *mesh_; }
   int n_vertices() const { return mesh_->n_vertices(); }
   int n_faces() const { return mesh_->n_faces(); }
+  /// require_triangles() on the mesh, checked once per run (every stage may ask; a refusal is
+  /// thrown again on every ask).
+  void require_triangles() const;
 
   // Of the run (the same for every Surface made from this one by with_positions).
   const MeshTopology& topology() const;
