@@ -1,4 +1,4 @@
-// Benchmark of the base from a drawing's silhouettes (reliefkit/base_library.h, thesis sect. 7.5):
+// Benchmark of the base from a drawing's silhouettes (reliefkit/drawing/base_library.h, thesis sect. 7.5):
 // time, peak memory, and the accuracy of what was timed.
 //   build/bench/bench_bases [--sizes 100000] [--repeat 3]
 // 1. Search: reading the shipped library (build/bases, features from its cache) and searching it
@@ -12,7 +12,7 @@
 
 #include "bases.h"
 #include "bench_util.h"
-#include "reliefkit/line_drawing.h"
+#include "reliefkit/drawing/line_drawing.h"
 
 using namespace reliefkit;
 

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "reliefkit/curvature.h"
+#include "reliefkit/base/curvature.h"
 #include "bench_util.h"
 #include "shapes.h"
 

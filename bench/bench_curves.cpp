@@ -15,9 +15,9 @@
 #include <sstream>
 #include <string>
 
-#include "reliefkit/demarcating.h"
-#include "reliefkit/relief_edges.h"
-#include "reliefkit/ridges.h"
+#include "reliefkit/demarcating/demarcating.h"
+#include "reliefkit/relief_edges/relief_edges.h"
+#include "reliefkit/relief_edges/ridges.h"
 #include "reliefs.h"
 #include "bench_util.h"
 #include "shapes.h"

@@ -14,7 +14,7 @@
 #include <sstream>
 #include <string>
 
-#include "reliefkit/demarcating.h"
+#include "reliefkit/demarcating/demarcating.h"
 #include "bench_util.h"
 #include "reliefs.h"
 #include "shapes.h"

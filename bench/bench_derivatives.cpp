@@ -14,7 +14,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "reliefkit/curvature.h"
+#include "reliefkit/base/curvature.h"
 #include "shapes.h"
 
 using namespace reliefkit;

@@ -1,4 +1,4 @@
-// Benchmark of relief reconstruction from line drawings (reliefkit/line_drawing.h,
+// Benchmark of relief reconstruction from line drawings (reliefkit/drawing/line_drawing.h,
 // drawing_interpretation.h, drawing_relief.h): time, peak memory, and the accuracy of what was timed.
 //   build/bench/bench_drawing [--sizes 2000000] [--repeat 1]
 // 1. Curve extraction on the 2480 x 3425 real drawing ../shared/data/drawings/lithic_replica_1.png

@@ -1,4 +1,4 @@
-// Benchmark of the multi-scale curves (reliefkit/multiscale.h): the whole Multi-scale Ridges and
+// Benchmark of the multi-scale curves (reliefkit/multiscale/multiscale.h): the whole Multi-scale Ridges and
 // Valleys and Multi-scale Relief Edges computations on ~1 M faces, time and peak memory, each
 // with the accuracy of what it timed (recall / precision against the known lines), and the
 // single-scale detectors on the same meshes for comparison.
@@ -6,13 +6,13 @@
 // Ridges & valleys: the unit test's noisy cylinder (20 % noise; valleys and ridges 0.35 and 5
 // edge lengths wide), made longer to reach the size. Relief edges: (a) the noisy disc reliefs of
 // the relief-edge benchmarks (15 % noise); (b) the hard case at the unit test's size
-// (tests/unit/test_multiscale.cpp): a sharp narrow band and a wide soft band on a noisy cylinder.
+// (tests/unit/multiscale/test_multiscale.cpp): a sharp narrow band and a wide soft band on a noisy cylinder.
 #include <cmath>
 #include <cstdio>
 #include <omp.h>
 
 #include "bench_util.h"
-#include "reliefkit/multiscale.h"
+#include "reliefkit/multiscale/multiscale.h"
 #include "reliefs.h"
 
 using namespace reliefkit;

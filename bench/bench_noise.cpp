@@ -12,8 +12,8 @@
 #include <string>
 
 #include "bench_util.h"
-#include "reliefkit/demarcating.h"
-#include "reliefkit/scale.h"
+#include "reliefkit/demarcating/demarcating.h"
+#include "reliefkit/base/scale.h"
 #include "mesh_files.h"
 #include "reliefs.h"
 #include "shapes.h"

@@ -1,4 +1,4 @@
-// Benchmark of the prominent field, enhancement and coloring (reliefkit/prominent.h) on ~1 M faces:
+// Benchmark of the prominent field, enhancement and coloring (reliefkit/prominent/prominent.h) on ~1 M faces:
 // time, peak memory, and the accuracy of what was timed.
 //   build/bench/bench_prominent [--sizes 1000000] [--repeat 1]
 // Surface: the relief-edge benchmarks' cylinder with a raised and a sunken disc, 10 % noise; for
@@ -12,7 +12,7 @@
 #include <omp.h>
 
 #include "bench_util.h"
-#include "reliefkit/prominent.h"
+#include "reliefkit/prominent/prominent.h"
 #include "reliefs.h"
 #include "shapes.h"
 

@@ -1,4 +1,4 @@
-// Benchmark of the scale space (reliefkit/scale_space.h) against the explicit diffusion it
+// Benchmark of the scale space (reliefkit/multiscale/scale_space.h) against the explicit diffusion it
 // replaces for large scales: a Gaussian bump on a plane of about N faces, smoothed to Gaussian
 // scales of 2, 4, 8, 16 and 64 edge lengths; wall time of each, next to its accuracy (the bump's
 // height against the exact Gaussian convolution).
@@ -9,9 +9,9 @@
 #include <cstdio>
 
 #include "bench_util.h"
-#include "reliefkit/scale.h"
-#include "reliefkit/scale_space.h"
-#include "reliefkit/smoothing.h"
+#include "reliefkit/base/scale.h"
+#include "reliefkit/multiscale/scale_space.h"
+#include "reliefkit/base/smoothing.h"
 #include "shapes.h"
 
 using namespace reliefkit;

@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "bench_util.h"
-#include "reliefkit/demarcating.h"
+#include "reliefkit/demarcating/demarcating.h"
 #include "mesh_files.h"
-#include "reliefkit/relief_edges.h"
-#include "reliefkit/ridges.h"
+#include "reliefkit/relief_edges/relief_edges.h"
+#include "reliefkit/relief_edges/ridges.h"
 
 using namespace reliefkit;
 

@@ -1,4 +1,4 @@
-// Benchmark of the base-normal solve (reliefkit/solvers.h) on the relief torus: Eigen's conjugate
+// Benchmark of the base-normal solve (reliefkit/base/solvers.h) on the relief torus: Eigen's conjugate
 // gradients, CHOLMOD's Cholesky factorization and the automatic choice, at base scales of 15, 60
 // and 227 edge lengths (the default, a wide one, and what Relief Edges chose at 10 M faces).
 // Each solve's accuracy is printed beside its time: the residual measured on the result, and the
@@ -11,9 +11,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "reliefkit/base_normals.h"
+#include "reliefkit/relief_edges/base_normals.h"
 #include "bench_util.h"
-#include "reliefkit/curvature.h"
+#include "reliefkit/base/curvature.h"
 #include "shapes.h"
 
 using namespace reliefkit;

@@ -5,7 +5,7 @@
 
 #include "mesh_bridge.h"
 #include "params.h"
-#include "reliefkit/curvature.h"
+#include "reliefkit/base/curvature.h"
 
 namespace reliefkit::ml {
 namespace {

@@ -3,7 +3,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "reliefkit/demarcating.h"
+#include "reliefkit/demarcating/demarcating.h"
 #include "mesh_bridge.h"
 #include "params.h"
 

@@ -1,4 +1,4 @@
-// "Base from Drawing Silhouette": MeshLab adapter of reliefkit/base_library.h (thesis sect. 7.5).
+// "Base from Drawing Silhouette": MeshLab adapter of reliefkit/drawing/base_library.h (thesis sect. 7.5).
 #include <QCoreApplication>
 #include <QDir>
 #include <QFileInfo>
@@ -9,8 +9,8 @@
 #include "drawing_filters.h"
 #include "mesh_bridge.h"
 #include "params.h"
-#include "reliefkit/base_library.h"
-#include "reliefkit/line_drawing.h"
+#include "reliefkit/drawing/base_library.h"
+#include "reliefkit/drawing/line_drawing.h"
 
 namespace reliefkit::ml {
 namespace {

@@ -9,8 +9,8 @@
 
 #include "mesh_bridge.h"
 #include "params.h"
-#include "reliefkit/drawing_file.h"
-#include "reliefkit/drawing_relief.h"
+#include "reliefkit/drawing/drawing_file.h"
+#include "reliefkit/drawing/drawing_relief.h"
 
 namespace reliefkit::ml {
 namespace {

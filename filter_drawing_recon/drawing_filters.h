@@ -1,5 +1,5 @@
 // "Line Drawing to Curves", "Relief from Line Drawing", "Base from Drawing Silhouette": MeshLab adapters of
-// reliefkit/line_drawing.h, drawing_interpretation.h, drawing_relief.h, drawing_file.h and base_library.h.
+// reliefkit/drawing/line_drawing.h, drawing_interpretation.h, drawing_relief.h, drawing_file.h and base_library.h.
 #pragma once
 
 #include "rk_plugin.h"

@@ -1,4 +1,4 @@
-// rk_make_bases — writes ReliefKit's library of base models (reliefkit/base_library.h) into a
+// rk_make_bases — writes ReliefKit's library of base models (reliefkit/drawing/base_library.h) into a
 // folder: <folder>/<class>/<class>_NN.ply for every class, and the silhouette-feature cache, so
 // that "Base from Drawing Silhouette" finds them ready. Run by the build (build/bases, copied
 // into the private prefix as share/reliefkit/bases).
@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <string>
 
-#include "reliefkit/base_library.h"
+#include "reliefkit/drawing/base_library.h"
 
 int main(int argc, char** argv) {
   if (argc < 2) {

@@ -6,7 +6,7 @@
 
 #include "mesh_bridge.h"
 #include "params.h"
-#include "reliefkit/multiscale.h"
+#include "reliefkit/multiscale/multiscale.h"
 
 namespace reliefkit::ml {
 namespace {

@@ -1,5 +1,5 @@
 // "Compute Optimal Scale", "Optimally Smoothed Surface", "Multi-scale Ridges and Valleys",
-// "Multi-scale Relief Edges": MeshLab adapters of reliefkit/optimal_scale.h and multiscale.h.
+// "Multi-scale Relief Edges": MeshLab adapters of reliefkit/multiscale/optimal_scale.h and multiscale.h.
 #pragma once
 
 #include "rk_plugin.h"

@@ -5,7 +5,7 @@
 
 #include "mesh_bridge.h"
 #include "params.h"
-#include "reliefkit/prominent.h"
+#include "reliefkit/prominent/prominent.h"
 
 namespace reliefkit::ml {
 namespace {

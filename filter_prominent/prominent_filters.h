@@ -1,5 +1,5 @@
 // "Prominent Field", "Prominent Enhancement", "Prominent Coloring": MeshLab adapters of
-// reliefkit/prominent.h.
+// reliefkit/prominent/prominent.h.
 #pragma once
 
 #include "rk_plugin.h"

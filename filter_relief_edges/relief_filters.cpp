@@ -4,11 +4,11 @@
 #include <cmath>
 #include <tuple>
 
-#include "reliefkit/base_normals.h"
+#include "reliefkit/relief_edges/base_normals.h"
 #include "mesh_bridge.h"
 #include "params.h"
-#include "reliefkit/relief_edges.h"
-#include "reliefkit/ridges.h"
+#include "reliefkit/relief_edges/relief_edges.h"
+#include "reliefkit/relief_edges/ridges.h"
 
 namespace reliefkit::ml {
 namespace {

@@ -7,10 +7,10 @@
 #include <functional>
 #include <vector>
 
-#include "reliefkit/mesh.h"
-#include "reliefkit/surface.h"
-#include "reliefkit/vcg_adapter.h"
-#include "reliefkit/zero_crossings.h"
+#include "reliefkit/base/mesh.h"
+#include "reliefkit/base/surface.h"
+#include "reliefkit/base/vcg_adapter.h"
+#include "reliefkit/base/zero_crossings.h"
 
 namespace reliefkit::ml {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "reliefkit/mesh.h"
+#include "reliefkit/base/mesh.h"
 
 namespace reliefkit::ml {
 namespace {

@@ -9,7 +9,7 @@
 
 #include <common/interfaces.h>
 
-#include "reliefkit/scale.h"
+#include "reliefkit/base/scale.h"
 #include "rk_plugin.h"
 
 namespace reliefkit::ml {

@@ -3,8 +3,8 @@
 #include <cstdlib>
 #include <exception>
 
-#include "reliefkit/mesh.h"
-#include "reliefkit/work_counts.h"
+#include "reliefkit/base/mesh.h"
+#include "reliefkit/base/work_counts.h"
 
 namespace reliefkit::ml {
 

@@ -16,13 +16,13 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "reliefkit/demarcating.h"
-#include "reliefkit/multiscale.h"
-#include "reliefkit/prominent.h"
-#include "reliefkit/relief_edges.h"
-#include "reliefkit/curvature.h"
-#include "reliefkit/repair.h"
-#include "reliefkit/ridges.h"
+#include "reliefkit/demarcating/demarcating.h"
+#include "reliefkit/multiscale/multiscale.h"
+#include "reliefkit/prominent/prominent.h"
+#include "reliefkit/relief_edges/relief_edges.h"
+#include "reliefkit/base/curvature.h"
+#include "reliefkit/base/repair.h"
+#include "reliefkit/relief_edges/ridges.h"
 
 using namespace reliefkit;
 

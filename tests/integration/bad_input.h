@@ -6,7 +6,7 @@
 #include <functional>
 #include <string>
 
-#include "reliefkit/mesh.h"
+#include "reliefkit/base/mesh.h"
 #include "server.h"
 
 namespace rktest {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "reliefkit/mesh.h"
+#include "reliefkit/base/mesh.h"
 
 namespace rktest {
 

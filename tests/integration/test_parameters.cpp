@@ -8,7 +8,7 @@
 #include <unordered_map>
 
 #include "mesh_files.h"
-#include "reliefkit/scale.h"
+#include "reliefkit/base/scale.h"
 #include "reliefs.h"
 #include "server.h"
 

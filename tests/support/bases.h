@@ -1,4 +1,4 @@
-// Drawings of base models for the tests and benchmarks of reliefkit/base_library.h: a library
+// Drawings of base models for the tests and benchmarks of reliefkit/drawing/base_library.h: a library
 // model stood upright in the drawing's world frame, its silhouettes drawn as an excavation
 // report's figure (outline in ink, with gaps, hatching inside, a caption beside it, paper noise).
 #pragma once
@@ -6,7 +6,7 @@
 #include <opencv2/core.hpp>
 #include <random>
 
-#include "reliefkit/base_library.h"
+#include "reliefkit/drawing/base_library.h"
 
 namespace rktest {
 

@@ -4,7 +4,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "reliefkit/drawing_relief.h"
+#include "reliefkit/drawing/drawing_relief.h"
 
 namespace rktest {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "reliefkit/mesh.h"
-#include "reliefkit/zero_crossings.h"
+#include "reliefkit/base/mesh.h"
+#include "reliefkit/base/zero_crossings.h"
 
 namespace rktest {
 

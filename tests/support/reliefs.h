@@ -4,8 +4,8 @@
 // inflects) and of the base normals, and can carry Gaussian noise along the normal.
 #pragma once
 
-#include "reliefkit/mesh.h"
-#include "reliefkit/zero_crossings.h"
+#include "reliefkit/base/mesh.h"
+#include "reliefkit/base/zero_crossings.h"
 
 namespace rktest {
 

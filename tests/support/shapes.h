@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <functional>
 
-#include "reliefkit/mesh.h"
+#include "reliefkit/base/mesh.h"
 
 namespace rktest {
 

@@ -1,0 +1,65 @@
+// ReliefKit — sparse symmetric positive-definite solves, shared by every core that needs one
+// (base normals now; multi-scale diffusion and drawing reconstruction next).
+//
+// Two library solvers behind one call:
+//  - iterative: Eigen's ConjugateGradient with a diagonal (Jacobi) preconditioner, started from
+//    the caller's guess; its sparse products run on every core (row-major, both triangles);
+//  - direct: CHOLMOD's supernodal Cholesky factorization (SuiteSparse, through Eigen's
+//    CholmodSupport; fill-reducing ordering chosen by CHOLMOD), exact up to rounding whatever the
+//    conditioning, but its time and memory grow faster than the mesh (measured on the relief
+//    torus: 3.1 s and 0.3 GB at 500 K unknowns, 17 s and 2.2 GB at 2 M; docs/relief_edges.md).
+// `Auto` takes the iterative solver unless the caller says the system is ill-conditioned
+// (`prefer_direct`) and it is small enough for the direct one, and falls back to the other solver
+// when the first fails (no convergence within the iteration limit, factorization failure, out of
+// memory). Every solve ends with the true relative residual max_k |A x_k - b_k| / |b_k| measured
+// on the result, whichever solver produced it, so a caller can always say how good it is.
+#pragma once
+
+#include <Eigen/Sparse>
+#include <string>
+
+#include "reliefkit/base/mesh.h"
+
+namespace reliefkit {
+
+enum class SolverMethod { Auto, Iterative, Direct };
+
+struct SolverOptions {
+  SolverMethod method = SolverMethod::Auto;
+  double tolerance = 1e-6;   // relative residual the iterative solver aims at (per column)
+  int max_iterations = 1000; // conjugate-gradient limit per column
+  bool prefer_direct = false;  // Auto: the caller expects many iterations (ill-conditioned system)
+  Progress progress = nullptr;
+  int progress_from = 0, progress_to = 100;  // the share of the caller's progress bar
+  const char* label = "Solve";
+};
+
+struct SolveReport {
+  std::string method;        // "conjugate gradients", "Cholesky (CHOLMOD)", or both when one fell back
+  int iterations = 0;        // conjugate-gradient iterations (largest over the columns), 0 if direct only
+  double residual = 0;       // max over the columns of |A x - b| / |b|, measured on the result
+  bool converged = false;    // residual <= tolerance (a direct solve: <= max(tolerance, 1e-8))
+  std::string note;          // why a fallback happened (empty when none)
+  std::string summary() const;  // "conjugate gradients, 132 iterations, residual 9.7e-04"
+};
+
+/// Solves A X = B for a symmetric positive-definite A (both triangles stored). X holds the initial
+/// guess on entry when its size matches B (the iterative solver starts from it), the solution on
+/// return. Never throws for a numerical failure: the report says what happened; throws InputError
+/// only for inconsistent sizes.
+SolveReport solve_spd(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& X,
+                      const SolverOptions& options = {});
+
+/// Conjugate-gradient iterations predicted for a "mass + stiffness" system A = M + K (diagonal
+/// mass M): about sqrt(condition number), the condition number about the median of A_ii / M_i.
+/// Measured (build/bench/bench_solvers, bench_curves): 467 iterations at a heat step of 52 edge
+/// lengths on the noisy cylinder relief, 391 at 60 on the relief torus (1 M faces), 561 at 4 M.
+double predicted_cg_iterations(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& mass);
+/// A Cholesky factorization costs what conjugate gradients spend on about 400 iterations (3.1 s
+/// at 1 M faces) to 340 (17 s at 4 M): above this prediction, callers set prefer_direct.
+constexpr double kDirectAboveIterations = 400;
+
+/// Largest system Auto hands to the direct solver (unknowns); larger ones stay iterative.
+constexpr int kDirectMaxUnknowns = 2500000;
+
+}  // namespace reliefkit

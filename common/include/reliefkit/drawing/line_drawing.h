@@ -1,0 +1,63 @@
+// ReliefKit — the curves of a raster line drawing (thesis section 7.2, "pre-processing").
+//
+// Dark lines are found as in C. Steger, "An unbiased detector of curvilinear structures", PAMI
+// 1998 (the thesis' ref. [121]): the image is smoothed by a Gaussian (sigma = 2 px by default); a
+// pixel holds a line point where the second derivative across the line (the Hessian's largest
+// eigenvalue, positive for a dark line on light paper) is strong, the first derivative across it
+// vanishes within the pixel (which is the non-minimum suppression: the line point is the sub-pixel
+// minimum of the profile), and the smoothed image is dark there. Line points are linked into
+// polylines along the line direction; where a line runs into another one a junction is recorded;
+// strokes shorter than a minimum length (shading, stippling, hatching) are dropped.
+//
+// Images are OpenCV matrices of any depth and 1, 3 or 4 channels; a transparent background (RGBA)
+// counts as white paper. Coordinates are pixels, x to the right, y down, (0, 0) the centre of the
+// top-left pixel.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "reliefkit/base/mesh.h"
+
+namespace reliefkit {
+
+struct LineDetectionParams {
+  double sigma = 2.0;          // Gaussian scale, px
+  double min_strength = 0.01;  // least second derivative across a line, intensity (0-1) / px^2
+  double max_intensity = 0.75; // line points are darker than this in the smoothed image (0 black, 1 white)
+  double min_length = 12;      // px: shorter strokes are dropped
+  double max_link_gap = 1.5;   // px between consecutive line points of one curve
+  double max_link_turn = 0.6;  // radians between the directions of consecutive line points
+  /// Throws InputError naming the first parameter out of its range.
+  void validate() const;
+};
+
+struct DrawingCurves {
+  std::vector<std::vector<Vec2>> curves;  // polylines, pixel coordinates
+  std::vector<Vec2> junctions;            // where a curve ends on another one
+  int width = 0, height = 0;              // of the image
+  long long line_points = 0;              // before linking
+  long long dropped_short = 0;            // curves dropped as shorter than min_length
+  double total_length() const;
+};
+
+/// The image as grey levels in [0, 1] (CV_32F), alpha composited on white. Throws InputError for an
+/// empty image or an unsupported channel count.
+cv::Mat drawing_grey(const cv::Mat& image);
+
+DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionParams& params = {});
+
+/// The margins of the curves (the thesis' fig. 7.2): each curve offset by `width` px to its left and
+/// to its right (per point, along the normal of the neighbouring segments), two polylines per curve.
+std::vector<std::vector<Vec2>> margin_lines(const DrawingCurves& curves, double width);
+
+/// Largest drawing read at full size (pixels); a larger one is reduced to it (INTER_AREA).
+constexpr double kMaxDrawingPixels = 60e6;
+
+/// Reads a drawing (PNG, JPEG, TIFF, BMP, ... : what OpenCV reads) keeping its alpha channel.
+/// Throws InputError naming the file when it is missing, unreadable or empty. A drawing larger than
+/// kMaxDrawingPixels is reduced; `reduction` (if given) receives the factor (1: read as it is).
+cv::Mat read_drawing_image(const std::string& path, double* reduction = nullptr);
+
+}  // namespace reliefkit

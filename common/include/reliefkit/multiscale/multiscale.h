@@ -1,0 +1,55 @@
+// ReliefKit — multi-scale curves (thesis section 5.4): the optimal scale of every vertex
+// (reliefkit/multiscale/optimal_scale.h), the optimally smoothed surface, and the single-scale detectors run
+// on it without pre-smoothing of their own; the curves are placed back on the input mesh (each
+// point keeps its mesh edge and its parameter along it).
+#pragma once
+
+#include "reliefkit/multiscale/optimal_scale.h"
+#include "reliefkit/relief_edges/relief_edges.h"
+#include "reliefkit/relief_edges/ridges.h"
+
+namespace reliefkit {
+
+struct MultiscaleRidgeValleys {
+  OptimalScale scale;        // per-vertex scale and the smoothed surface the curves come from
+  RidgeValleyResult curves;  // ridges and valleys, on the input mesh; strengths and thresholds
+                             // normalised (unit-free: (σ / h)² |k| h)
+};
+
+struct MultiscaleReliefEdges {
+  OptimalScale scale;
+  ReliefEdgeResult curves;   // edges on the input mesh; per-vertex fields of the smoothed surface
+  double noise_angle = 0;    // the smallest per-vertex noise tilt (at the largest scale; radians)
+};
+
+/// Multiplies each curve point's strength by (σ / h)^{2γ} h^power, σ the smaller scale of the two
+/// ends of the point's edge (the larger would amplify a fine feature's curvature where the scale
+/// changes across the edge): the strength normalised as in the scale selection, unit-free for
+/// power = 1 (curvature) or 2 (curvature derivative).
+void normalise_curve_strengths(Polylines& curves, const OptimalScale& scale, double gamma, int power);
+
+/// Curves (chains at least the minimum length) must be this share of the strength noise reaches
+/// at 99 % of the vertices (OptimalScale::strength_floor).
+constexpr double kCurveNoise = 0.75;
+
+/// A Gaussian groove's banks are ridges of the surface with 0.45 times the groove's curvature
+/// (and a crest's feet valleys): curves of the opposite kind within a feature's footprint
+/// (OptimalScale::sign, dominant_reach) that are less than this share of its strength are its
+/// banks, reported as the feature itself (its centre line) and not again.
+constexpr double kBankRatio = 0.5;
+/// Drops the segments both of whose points lie in the footprint of a feature of `flanked_sign`
+/// (+1 convex: drops valleys along crests; -1 concave: ridges along grooves) weaker than kBankRatio x it.
+void drop_banks(Polylines& curves, const OptimalScale& scale, int flanked_sign);
+
+/// Per vertex, the tilt noise leaves on the optimally smoothed surface (noise_tilt at each level's
+/// scale combined with the final smoothing, interpolated log-linearly in log σ at the vertex's scale).
+std::vector<double> noise_tilt_at_scales(const OptimalScale& scale, double final_smoothing_edges, long long faces);
+
+/// `scale.curve` is set to the detector's strength; `params.presmoothing` is ignored (the optimal
+/// scale replaces it).
+MultiscaleRidgeValleys multiscale_ridges_valleys(const TriMesh& mesh, OptimalScaleOptions scale,
+                                                 RidgeValleyParams params = {});
+MultiscaleReliefEdges multiscale_relief_edges(const TriMesh& mesh, OptimalScaleOptions scale,
+                                              ReliefEdgeParams params = {});
+
+}  // namespace reliefkit

@@ -1,0 +1,196 @@
+#include "reliefkit/base/curve_selection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <tuple>
+
+namespace reliefkit {
+
+Polylines select_segments(const Polylines& in, const std::vector<char>& keep_segment) {
+  Polylines out;
+  out.rejected_faces = in.rejected_faces;
+  std::vector<int> remap(in.points.size(), -1);
+  for (size_t k = 0; k < in.segments.size(); ++k) {
+    if (!keep_segment[k]) continue;
+    std::array<int, 2> s;
+    for (int e = 0; e < 2; ++e) {
+      int p = in.segments[k][e];
+      if (remap[p] < 0) {
+        remap[p] = static_cast<int>(out.points.size());
+        out.points.push_back(in.points[p]);
+        out.strength.push_back(in.strength[p]);
+        if (!in.point_edge.empty()) {
+          out.point_edge.push_back(in.point_edge[p]);
+          out.point_weight.push_back(in.point_weight[p]);
+        }
+      }
+      s[e] = remap[p];
+    }
+    out.segments.push_back(s);
+    out.segment_face.push_back(in.segment_face[k]);
+  }
+  return out;
+}
+
+double automatic_curve_threshold(double noise_scale, const Polylines& all) {
+  std::vector<double> st;
+  st.reserve(all.segments.size());
+  for (const auto& sg : all.segments) st.push_back(0.5 * (all.strength[sg[0]] + all.strength[sg[1]]));
+  return automatic_curve_threshold(noise_scale, std::move(st));
+}
+
+double automatic_curve_threshold(double noise_scale, std::vector<double> st) {
+  // Segments of negative strength (a ridge where k1 < 0) are no candidates at all.
+  st.erase(std::remove_if(st.begin(), st.end(), [](double x) { return !(x >= 0); }), st.end());
+  double top = 0;
+  if (!st.empty()) {
+    auto k = st.begin() + static_cast<long>(kTopPercentile * double(st.size() - 1));
+    std::nth_element(st.begin(), k, st.end());
+    top = *k;
+  }
+  return std::max(kNoiseFactor * noise_scale, kTopFactor * top);
+}
+
+double median_positive(const std::vector<double>& values) {
+  std::vector<double> s;
+  s.reserve(values.size());
+  for (double x : values)
+    if (std::isfinite(x) && x > 0) s.push_back(x);
+  if (s.empty()) return 0;
+  auto mid = s.begin() + s.size() / 2;
+  std::nth_element(s.begin(), mid, s.end());
+  return *mid;
+}
+
+Polylines keep_strong_segments(const Polylines& in, double min_strength) {
+  std::vector<char> keep(in.segments.size());
+  for (size_t k = 0; k < in.segments.size(); ++k)
+    keep[k] = 0.5 * (in.strength[in.segments[k][0]] + in.strength[in.segments[k][1]]) >= min_strength;
+  return select_segments(in, keep);
+}
+
+Polylines drop_short_chains(const Polylines& in, double min_length) {
+  if (!(min_length > 0)) return in;
+  std::vector<char> keep_point(in.points.size(), 0);
+  for (const auto& ch : in.chains()) {
+    double L = 0;
+    for (size_t k = 1; k < ch.size(); ++k) L += (in.points[ch[k]] - in.points[ch[k - 1]]).norm();
+    if (L >= min_length)
+      for (int p : ch) keep_point[p] = 1;
+  }
+  std::vector<char> keep(in.segments.size());
+  for (size_t k = 0; k < in.segments.size(); ++k)
+    keep[k] = keep_point[in.segments[k][0]] && keep_point[in.segments[k][1]];
+  return select_segments(in, keep);
+}
+
+int link_gaps(Polylines& c, double max_gap, double max_turn) {
+  if (!(max_gap > 0) || c.segments.empty()) return 0;
+  const int np = static_cast<int>(c.points.size());
+  std::vector<int> deg(np, 0), seg_of(np, -1);
+  for (int k = 0; k < static_cast<int>(c.segments.size()); ++k)
+    for (int e : c.segments[k]) ++deg[e], seg_of[e] = k;
+  // Ends of open chains: their chain, its length, and the outward direction near the end.
+  struct End {
+    int point, chain;
+    Vec3 out;
+  };
+  std::vector<End> ends;
+  std::vector<double> chain_length;
+  const auto chains = c.chains();
+  for (int ci = 0; ci < static_cast<int>(chains.size()); ++ci) {
+    const auto& ch = chains[ci];
+    double L = 0;
+    for (size_t i = 1; i < ch.size(); ++i) L += (c.points[ch[i]] - c.points[ch[i - 1]]).norm();
+    chain_length.push_back(L);
+    if (ch.size() < 2 || ch.front() == ch.back()) continue;
+    for (int side = 0; side < 2; ++side) {
+      const int n = static_cast<int>(ch.size());
+      const int p = side == 0 ? ch.front() : ch.back();
+      if (deg[p] != 1) continue;
+      // Walk back along the chain up to max_gap for a stable direction.
+      Vec3 tip = c.points[p], back = tip;
+      double walked = 0;
+      for (int i = 1; i < n && walked < max_gap; ++i) {
+        const Vec3& q = c.points[side == 0 ? ch[i] : ch[n - 1 - i]];
+        walked += (q - back).norm();
+        back = q;
+      }
+      Vec3 out = tip - back;
+      if (out.norm() > 0) ends.push_back({p, ci, out.normalized()});
+    }
+  }
+  if (ends.size() < 2) return 0;
+  // Candidate pairs through a grid of cell max_gap.
+  // Cell indices clamped: a coordinate 1e30 times the gap must not overflow the integer (fuzzer).
+  auto index = [max_gap](double v) {
+    const double q = std::floor(v / max_gap);
+    return static_cast<long long>(q == q ? std::clamp(q, -1e15, 1e15) : 0.0);
+  };
+  auto cell = [&index](const Vec3& x) {
+    return std::array<long long, 3>{index(x.x()), index(x.y()), index(x.z())};
+  };
+  std::vector<std::pair<std::array<long long, 3>, int>> grid;
+  for (int i = 0; i < static_cast<int>(ends.size()); ++i) grid.push_back({cell(c.points[ends[i].point]), i});
+  std::sort(grid.begin(), grid.end());
+  const double cos_turn = std::cos(max_turn);
+  std::vector<std::tuple<double, int, int>> pairs;
+  for (int i = 0; i < static_cast<int>(ends.size()); ++i) {
+    const Vec3& pi = c.points[ends[i].point];
+    const auto ci = cell(pi);
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          const std::array<long long, 3> key{ci[0] + dx, ci[1] + dy, ci[2] + dz};
+          auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(key, -1));
+          for (; it != grid.end() && it->first == key; ++it) {
+            const int j = it->second;
+            if (j <= i) continue;
+            const Vec3 d = c.points[ends[j].point] - pi;
+            const double dist = d.norm();
+            if (!(dist <= max_gap)) continue;
+            if (ends[i].chain == ends[j].chain && chain_length[ends[i].chain] <= 4 * max_gap) continue;
+            if (dist > 0 && (ends[i].out.dot(d) < cos_turn * dist || ends[j].out.dot(-d) < cos_turn * dist)) continue;
+            if (ends[i].out.dot(-ends[j].out) < cos_turn) continue;  // the two ends must face each other
+            pairs.emplace_back(dist, i, j);
+          }
+        }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<char> used(ends.size(), 0);
+  int links = 0;
+  for (const auto& [dist, i, j] : pairs) {
+    if (used[i] || used[j]) continue;
+    used[i] = used[j] = 1;
+    const int a = ends[i].point, b = ends[j].point;
+    c.segments.push_back({a, b});
+    c.segment_face.push_back(c.segment_face[seg_of[a]]);
+    ++links;
+  }
+  return links;
+}
+
+Polylines hysteresis(const Polylines& all, const std::vector<char>& strong, const std::vector<char>& weak) {
+  const size_t ns = all.segments.size();
+  std::vector<std::vector<int>> at_point(all.points.size());
+  for (size_t k = 0; k < ns; ++k)
+    for (int e = 0; e < 2; ++e) at_point[all.segments[k][e]].push_back(int(k));
+  std::vector<char> keep(ns, 0);
+  std::vector<int> stack;
+  for (size_t k = 0; k < ns; ++k)
+    if (strong[k] && !keep[k]) {
+      keep[k] = 1;
+      stack.push_back(int(k));
+      while (!stack.empty()) {
+        const int s = stack.back();
+        stack.pop_back();
+        for (int e = 0; e < 2; ++e)
+          for (int o : at_point[all.segments[s][e]])
+            if (!keep[o] && (weak[o] || strong[o])) keep[o] = 1, stack.push_back(o);
+      }
+    }
+  return select_segments(all, keep);
+}
+
+}  // namespace reliefkit

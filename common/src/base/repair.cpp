@@ -1,0 +1,264 @@
+#include "reliefkit/base/repair.h"
+#include "reliefkit/base/work_counts.h"
+
+#include <algorithm>
+#include <cstring>
+#include <cstdint>
+#include <array>
+#include <numeric>
+#include <sstream>
+#include <tuple>
+
+namespace reliefkit {
+
+std::string RepairReport::summary() const {
+  if (!changed() && conflicting_parts == 0) return "";
+  std::ostringstream s;
+  s << "Repaired for the computation (the layer itself is unchanged):";
+  const char* sep = " ";
+  auto item = [&](long long n, const char* one, const char* many) {
+    if (n > 0) s << sep << n << " " << (n == 1 ? one : many), sep = "; ";
+  };
+  item(welded_vertices, "coincident vertex welded", "coincident vertices welded");
+  item(duplicate_faces, "duplicated face ignored", "duplicated faces ignored");
+  item(collapsed_faces, "face collapsed by welding ignored", "faces collapsed by welding ignored");
+  item(flipped_faces, "face flipped to agree with its neighbours", "faces flipped to agree with their neighbours");
+  item(reversed_parts, "closed part turned outside out", "closed parts turned outside out");
+  if (conflicting_parts > 0)
+    s << sep << conflicting_parts
+      << " parts cannot be oriented coherently (Moebius-like; run Filters > Cleaning and Repairing > Re-Orient all "
+         "faces coherentely to see where)";
+  s << ".";
+  return s.str();
+}
+
+RepairedMesh repair_for_computation(const TriMesh& in) {
+  RepairedMesh out;
+  out.mesh = in;
+  out.report = repair_in_place(out.mesh, &out.of_input);
+  return out;
+}
+
+namespace {
+// The adjacency's corners after faces were turned (their corners 1 and 2 swapped).
+void swap_flipped_corners(const TriMesh& mesh, const std::vector<signed char>& flip, VertexFaces& vf) {
+  for (int f = 0; f < mesh.n_faces(); ++f) {
+    if (flip[f] != 1) continue;
+    const auto& t = mesh.faces[f];
+    for (int j = 0; j < 3; ++j) {
+      if ((j >= 1 && t[j] == t[0]) || (j == 2 && t[j] == t[1])) continue;  // each vertex once
+      for (int k = vf.offset[t[j]]; k < vf.offset[t[j] + 1]; ++k)
+        if (vf.face[k] == f && vf.corner[k] != 0) vf.corner[k] = static_cast<unsigned char>(3 - vf.corner[k]);
+    }
+  }
+}
+}  // namespace
+
+RepairReport repair_in_place(TriMesh& mesh, std::vector<int>* of_input, VertexFaces* faces) {
+  count_work(Work::Repair);
+  RepairReport rep;
+  const int nv = mesh.n_vertices();
+  if (of_input) {
+    of_input->resize(nv);
+    std::iota(of_input->begin(), of_input->end(), 0);
+  }
+  // A face referring to a missing vertex is not repairable here: the mesh stays as it is, for
+  // require_triangles() to refuse with its message.
+  for (const auto& f : mesh.faces)
+    for (int v : f)
+      if (v < 0 || v >= nv) return rep;
+
+  // 1. Weld vertices at exactly the same position. Vertices are sorted by a 64-bit hash of their
+  // exact coordinates (computed in parallel; a direct sort of integer pairs, not an indirect one on
+  // coordinates); equal hashes are then told apart by their coordinates.
+  {
+    std::vector<std::pair<uint64_t, int>> keyed(nv);
+#pragma omp parallel for schedule(static)
+    for (int v = 0; v < nv; ++v) {
+      uint64_t h = 1469598103934665603ull;
+      for (int k = 0; k < 3; ++k) {
+        double x = mesh.vertices[v][k];
+        if (x == 0) x = 0;  // -0 and +0 are the same position
+        uint64_t bits;
+        std::memcpy(&bits, &x, sizeof bits);
+        h = (h ^ bits) * 1099511628211ull;
+        h ^= h >> 29;
+      }
+      keyed[v] = {h, v};
+    }
+    std::sort(keyed.begin(), keyed.end());
+    std::vector<int> rep_of(nv, -1);  // the first input vertex at each position
+    for (int i = 0; i < nv;) {
+      int j = i;
+      while (j < nv && keyed[j].first == keyed[i].first) ++j;
+      for (int k = i; k < j; ++k) {  // a run of equal hashes: almost always one vertex
+        const int v = keyed[k].second;
+        if (!mesh.vertices[v].allFinite()) continue;
+        for (int l = i; l < k; ++l) {
+          const int u = keyed[l].second;
+          if (rep_of[u] == u && mesh.vertices[u] == mesh.vertices[v]) {
+            rep_of[v] = u;
+            ++rep.welded_vertices;
+            break;
+          }
+        }
+        if (rep_of[v] < 0) rep_of[v] = v;
+      }
+      i = j;
+    }
+    if (rep.welded_vertices > 0) {
+      std::vector<int> index(nv, -1);
+      int kept = 0;
+      for (int v = 0; v < nv; ++v)
+        if (rep_of[v] < 0 || rep_of[v] == v) {
+          index[v] = kept;
+          mesh.vertices[kept++] = mesh.vertices[v];
+        }
+      for (int v = 0; v < nv; ++v)
+        if (index[v] < 0) index[v] = index[rep_of[v]];
+      mesh.vertices.resize(kept);
+      for (auto& f : mesh.faces)
+        for (int& v : f) v = index[v];
+      if (of_input) *of_input = std::move(index);
+    }
+  }
+
+  // 2. Drop faces collapsed by welding and duplicated faces. Duplicates share all three vertices:
+  // they are looked for among the faces of the face's vertex of least valence (no global sort;
+  // linear in the faces even around a vertex of very high valence).
+  VertexFaces vf = vertex_faces(mesh);
+  auto deg = [&](int v) { return vf.offset[v + 1] - vf.offset[v]; };
+  {
+    const int nf0 = mesh.n_faces();
+    std::vector<char> drop(nf0, 0);
+    long long collapsed = 0, duplicates = 0;
+#pragma omp parallel for schedule(dynamic, 4096) reduction(+ : collapsed, duplicates)
+    for (int i = 0; i < nf0; ++i) {
+      const auto& t = mesh.faces[i];
+      if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+        if (rep.welded_vertices > 0) drop[i] = 1, ++collapsed;  // input degeneracies stay (counted later)
+        continue;
+      }
+      int c = t[0];
+      for (int v : t)
+        if (deg(v) < deg(c)) c = v;
+      auto key = t;
+      std::sort(key.begin(), key.end());
+      for (int k = vf.offset[c]; k < vf.offset[c + 1]; ++k) {
+        const int g = vf.face[k];
+        if (g >= i) continue;  // an earlier face on the same vertices makes this one a duplicate
+        auto kg = mesh.faces[g];
+        std::sort(kg.begin(), kg.end());
+        if (kg == key) {
+          drop[i] = 1, ++duplicates;
+          break;
+        }
+      }
+    }
+    rep.collapsed_faces = collapsed;
+    rep.duplicate_faces = duplicates;
+    if (collapsed + duplicates > 0) {
+      size_t kept = 0;
+      for (int i = 0; i < nf0; ++i)
+        if (!drop[i]) mesh.faces[kept++] = mesh.faces[i];
+      mesh.faces.resize(kept);
+      vf = vertex_faces(mesh);
+    }
+  }
+
+  // 3. Coherent orientation per part: breadth-first over manifold edges (exactly two faces). The
+  // face across an edge is found among the faces of the edge's end of least valence.
+  const int nf = mesh.n_faces();
+  // Per face and side: the neighbour across it (-1: boundary or non-manifold) and whether the two
+  // traverse the edge in the same direction (then one of them must be flipped).
+  std::vector<std::array<int, 3>> across(nf, {-1, -1, -1});
+  std::vector<std::array<char, 3>> same_dir(nf, {0, 0, 0});
+  std::vector<char> closed_edge_ok(nf, 1);  // every edge of the face has exactly two faces
+#pragma omp parallel for schedule(dynamic, 4096)
+  for (int f = 0; f < nf; ++f) {
+    const auto& t = mesh.faces[f];
+    for (int j = 0; j < 3; ++j) {
+      const int a = t[j], b = t[(j + 1) % 3];
+      if (a == b) {
+        closed_edge_ok[f] = 0;
+        continue;
+      }
+      const int c = deg(a) <= deg(b) ? a : b;
+      int found = -1, count = 0;
+      char same = 0;
+      for (int k = vf.offset[c]; k < vf.offset[c + 1]; ++k) {
+        const int g = vf.face[k];
+        if (g == f) continue;
+        const auto& u = mesh.faces[g];
+        for (int i = 0; i < 3; ++i) {
+          if (u[i] == a && u[(i + 1) % 3] == b) ++count, found = g, same = 1;
+          if (u[i] == b && u[(i + 1) % 3] == a) ++count, found = g, same = 0;
+        }
+      }
+      if (count == 1) {
+        across[f][j] = found;
+        same_dir[f][j] = same;
+      } else {
+        closed_edge_ok[f] = 0;
+      }
+    }
+  }
+  std::vector<signed char> flip(nf, -1);
+  std::vector<int> queue, part;
+  for (int seed = 0; seed < nf; ++seed) {
+    if (flip[seed] >= 0) continue;
+    flip[seed] = 0;
+    queue.assign(1, seed);
+    part.clear();
+    bool conflict = false, closed = true;
+    for (size_t q = 0; q < queue.size(); ++q) {
+      const int f = queue[q];
+      part.push_back(f);
+      closed = closed && closed_edge_ok[f];
+      for (int j = 0; j < 3; ++j) {
+        const int g = across[f][j];
+        if (g < 0) continue;
+        const signed char want = static_cast<signed char>(flip[f] ^ (same_dir[f][j] ? 1 : 0));
+        if (flip[g] < 0) {
+          flip[g] = want;
+          queue.push_back(g);
+        } else if (flip[g] != want) {
+          conflict = true;
+        }
+      }
+    }
+    if (conflict) {
+      ++rep.conflicting_parts;
+      for (int f : part) flip[f] = 0;  // not safe to change: leave the part as it was
+      continue;
+    }
+    long long flips = 0;
+    for (int f : part) flips += flip[f];
+    if (2 * flips > static_cast<long long>(part.size())) {  // keep the majority's orientation
+      for (int f : part) flip[f] ^= 1;
+      flips = static_cast<long long>(part.size()) - flips;
+    }
+    rep.flipped_faces += flips;
+    if (closed) {  // a closed part: normals outwards (positive signed volume)
+      double vol = 0;
+      for (int f : part) {
+        const auto& t = mesh.faces[f];
+        double v6 = mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+        vol += flip[f] ? -v6 : v6;
+      }
+      if (vol < 0) {
+        for (int f : part) flip[f] ^= 1;
+        ++rep.reversed_parts;
+      }
+    }
+    for (int f : part)
+      if (flip[f]) std::swap(mesh.faces[f][1], mesh.faces[f][2]);
+  }
+  if (faces) {
+    if (rep.flipped_faces + rep.reversed_parts > 0) swap_flipped_corners(mesh, flip, vf);
+    *faces = std::move(vf);
+  }
+  return rep;
+}
+
+}  // namespace reliefkit

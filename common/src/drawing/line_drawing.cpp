@@ -1,0 +1,376 @@
+#include "reliefkit/drawing/line_drawing.h"
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <fstream>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+#include "reliefkit/base/scale.h"
+
+namespace reliefkit {
+
+void LineDetectionParams::validate() const {
+  require_range(sigma, "Line scale sigma (px)", 0.5, 50);
+  require_range(min_strength, "Line strength", 0, 10);
+  require_range(max_intensity, "Darkest paper", 0, 1);
+  require_range(min_length, "Minimum stroke length (px)", 0, 1e6);
+  require_range(max_link_gap, "Link gap (px)", 1, 10);
+  require_range(max_link_turn, "Link turn (radians)", 0, 3.2);
+}
+
+double DrawingCurves::total_length() const {
+  double len = 0;
+  for (const auto& c : curves)
+    for (size_t i = 1; i < c.size(); ++i) len += (c[i] - c[i - 1]).norm();
+  return len;
+}
+
+std::vector<std::vector<Vec2>> margin_lines(const DrawingCurves& dc, double width) {
+  require_range(width, "Margin width (px)", 0, 1e6);
+  std::vector<std::vector<Vec2>> out;
+  for (const auto& c : dc.curves) {
+    if (c.size() < 2) continue;
+    std::vector<Vec2> left, right;
+    for (size_t i = 0; i < c.size(); ++i) {
+      const Vec2 d = c[std::min(i + 1, c.size() - 1)] - c[i > 0 ? i - 1 : 0];
+      const double len = d.norm();
+      if (!(len > 0)) continue;
+      const Vec2 l(d.y() / len, -d.x() / len);  // left of the direction of travel, image y down
+      left.push_back(c[i] + width * l);
+      right.push_back(c[i] - width * l);
+    }
+    if (left.size() >= 2) out.push_back(std::move(left)), out.push_back(std::move(right));
+  }
+  return out;
+}
+
+cv::Mat read_drawing_image(const std::string& path, double* reduction) {
+  if (reduction) *reduction = 1;
+  if (path.empty()) throw InputError("No drawing image was given.");
+  if (!std::ifstream(path).good()) throw InputError("The drawing image \"" + path + "\" does not exist or cannot be read.");
+  cv::Mat img;
+  try {
+    img = cv::imread(path, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    throw InputError("The drawing image \"" + path + "\" could not be decoded: " + e.what());
+  }
+  if (img.empty())
+    throw InputError("The drawing image \"" + path + "\" is not an image OpenCV can read (PNG, JPEG, TIFF, BMP...), or it is empty.");
+  const double px = double(img.rows) * img.cols;
+  if (px > kMaxDrawingPixels) {
+    const double f = std::sqrt(kMaxDrawingPixels / px);
+    cv::Mat small;
+    cv::resize(img, small, cv::Size(std::max(1, int(img.cols * f)), std::max(1, int(img.rows * f))), 0, 0, cv::INTER_AREA);
+    img = small;
+    if (reduction) *reduction = f;
+  }
+  return img;
+}
+
+cv::Mat drawing_grey(const cv::Mat& image) {
+  if (image.empty() || image.rows < 1 || image.cols < 1) throw InputError("The drawing image is empty (no pixels).");
+  const int ch = image.channels();
+  if (ch != 1 && ch != 3 && ch != 4)
+    throw InputError("The drawing image has " + std::to_string(ch) + " channels; grey, RGB or RGBA images are read.");
+  if (image.depth() == CV_8U) {  // the usual case, in one pass: weights of ITU-R BT.601, alpha over white
+    cv::Mat grey(image.rows, image.cols, CV_32F);
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y < image.rows; ++y) {
+      const uchar* in = image.ptr<uchar>(y);
+      float* o = grey.ptr<float>(y);
+      for (int x = 0; x < image.cols; ++x, in += ch) {
+        float v = ch == 1 ? in[0] / 255.f : (0.114f * in[0] + 0.587f * in[1] + 0.299f * in[2]) / 255.f;
+        if (ch == 4) {
+          const float a = in[3] / 255.f;
+          v = a * v + (1 - a);
+        }
+        o[x] = v;
+      }
+    }
+    return grey;
+  }
+  cv::Mat f;
+  const double scale = image.depth() == CV_8U ? 1.0 / 255 : image.depth() == CV_16U ? 1.0 / 65535 : 1.0;
+  image.convertTo(f, CV_32F, scale);
+  cv::Mat grey;
+  if (ch == 1) {
+    grey = f;
+  } else {
+    std::vector<cv::Mat> planes;
+    cv::split(f, planes);  // OpenCV's channel order: B, G, R (, A)
+    grey = 0.114f * planes[0] + 0.587f * planes[1] + 0.299f * planes[2];
+    if (ch == 4) grey = grey.mul(planes[3]) + (1.0f - planes[3]);  // transparent = white paper
+  }
+  cv::patchNaNs(grey, 1.0);
+  cv::min(cv::max(grey, 0.0), 1.0, grey);
+  return grey;
+}
+
+namespace {
+
+// Largest second derivative along a line point's direction, relative to the one across it.
+constexpr double kMaxAlongRatio = 0.7;
+
+struct LinePoint {
+  float x, y;     // sub-pixel position
+  float dx, dy;   // unit direction along the line
+  float strength;
+};
+
+// The direction a polyline leaves by at its end `e` (0: front, 1: back), from the last few px.
+Vec2 end_direction(const std::vector<Vec2>& c, int e) {
+  const size_t n = c.size(), k = std::min<size_t>(n - 1, 4);
+  const Vec2 d = e ? c[n - 1] - c[n - 1 - k] : c[0] - c[k];
+  const double len = d.norm();
+  return len > 0 ? Vec2(d / len) : Vec2(0, 0);
+}
+
+// Line detection fades where lines meet or turn sharply (a corner's profile is no line's), so a
+// drawn stroke comes out in pieces whose ends face each other across a gap of about 2 sigma.
+// Ends are joined greedily, the cheapest pair first (gap plus a penalty for the turn), when the
+// gap is within `join` px and each end points towards the other; a piece whose two ends meet is
+// closed. Pieces are concatenated in place; `pieces` keeps only the joined results.
+void join_pieces(std::vector<std::vector<Vec2>>& pieces, const LineDetectionParams& p) {
+  const double join = 2.5 * p.sigma + 1.5;
+  struct End {
+    int piece, e;
+    Vec2 at, dir;
+  };
+  std::vector<End> ends;
+  for (size_t i = 0; i < pieces.size(); ++i)
+    for (int e = 0; e < 2; ++e) ends.push_back({int(i), e, e ? pieces[i].back() : pieces[i].front(), end_direction(pieces[i], e)});
+  // Candidate pairs through a grid of cell `join`.
+  const double cell = join;
+  std::unordered_map<long long, std::vector<int>> grid;
+  auto key = [&](const Vec2& q) {
+    return (long long)std::floor(q.x() / cell) * 1000003LL + (long long)std::floor(q.y() / cell);
+  };
+  for (size_t k = 0; k < ends.size(); ++k) grid[key(ends[k].at)].push_back(int(k));
+  struct Pair {
+    double cost;
+    int a, b;
+  };
+  std::vector<Pair> cand;
+  for (size_t a = 0; a < ends.size(); ++a) {
+    const long long gx = (long long)std::floor(ends[a].at.x() / cell), gy = (long long)std::floor(ends[a].at.y() / cell);
+    for (long long ox = -1; ox <= 1; ++ox)
+      for (long long oy = -1; oy <= 1; ++oy) {
+        auto it = grid.find((gx + ox) * 1000003LL + (gy + oy));
+        if (it == grid.end()) continue;
+        for (int b : it->second) {
+          if (b <= int(a)) continue;
+          const End &A = ends[a], &B = ends[size_t(b)];
+          if (A.piece == B.piece && pieces[size_t(A.piece)].size() < 8) continue;  // a speck does not close on itself
+          const Vec2 v = B.at - A.at;
+          const double gap = v.norm();
+          if (gap > join) continue;
+          double turn = 0;  // angle between A's way out and B's way in
+          if (gap > 0.5) {
+            const Vec2 u = v / gap;
+            if (A.dir.dot(u) < 0.3 || B.dir.dot(-u) < 0.3) continue;  // each end faces the other
+          }
+          turn = std::acos(std::clamp(-A.dir.dot(B.dir), -1.0, 1.0));
+          if (turn > 2.0) continue;  // sharper than ~115 degrees: not one stroke
+          cand.push_back({gap + 2 * turn, int(a), b});
+        }
+      }
+  }
+  // Where three or more ends meet (a junction: a T or a Y), the curves end there: the thesis'
+  // curves meet at junctions but do not run through them.
+  std::vector<int> partners(ends.size(), 0);
+  for (const Pair& c : cand) ++partners[size_t(c.a)], ++partners[size_t(c.b)];
+  cand.erase(std::remove_if(cand.begin(), cand.end(),
+                            [&](const Pair& c) { return partners[size_t(c.a)] > 1 || partners[size_t(c.b)] > 1; }),
+             cand.end());
+  std::sort(cand.begin(), cand.end(), [](const Pair& x, const Pair& y) { return x.cost < y.cost; });
+  // Union of pieces: each piece's current owner, and which end of the owner each end now is.
+  std::vector<char> used(ends.size(), 0), closed(pieces.size(), 0);
+  std::vector<int> owner(pieces.size());
+  std::iota(owner.begin(), owner.end(), 0);
+  auto find = [&](int i) {
+    while (owner[size_t(i)] != i) i = owner[size_t(i)] = owner[size_t(owner[size_t(i)])];
+    return i;
+  };
+  // Position of each end: (root piece, front/back). Joined ends are interior and never reused, so
+  // an unused end of piece i is still an end of the polyline held by find(i), at the same point.
+  for (const Pair& c : cand) {
+    if (used[size_t(c.a)] || used[size_t(c.b)]) continue;
+    const End &A = ends[size_t(c.a)], &B = ends[size_t(c.b)];
+    const int ra = find(A.piece), rb = find(B.piece);
+    auto& pa = pieces[size_t(ra)];
+    if (closed[size_t(ra)] || closed[size_t(rb)]) continue;
+    const bool a_back = (pa.back() - A.at).norm() < 1e-9, a_front = (pa.front() - A.at).norm() < 1e-9;
+    if (ra == rb) {  // both ends of one polyline: close it
+      if (!(a_back || a_front)) continue;
+      pa.push_back(pa.front());
+      closed[size_t(ra)] = 1;
+      used[size_t(c.a)] = used[size_t(c.b)] = 1;
+      continue;
+    }
+    auto& pb = pieces[size_t(rb)];
+    const bool b_front = (pb.front() - B.at).norm() < 1e-9, b_back = (pb.back() - B.at).norm() < 1e-9;
+    if (!(a_back || a_front) || !(b_front || b_back)) continue;
+    if (!a_back) std::reverse(pa.begin(), pa.end());  // A's end last
+    if (!b_front) std::reverse(pb.begin(), pb.end());  // B's end first
+    pa.insert(pa.end(), pb.begin(), pb.end());
+    pb.clear();
+    owner[size_t(rb)] = ra;
+    used[size_t(c.a)] = used[size_t(c.b)] = 1;
+  }
+  pieces.erase(std::remove_if(pieces.begin(), pieces.end(), [](const std::vector<Vec2>& c) { return c.size() < 2; }),
+               pieces.end());
+}
+
+}  // namespace
+
+DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionParams& p) {
+  p.validate();
+  DrawingCurves out;
+  const cv::Mat grey = drawing_grey(image);
+  out.width = grey.cols, out.height = grey.rows;
+  cv::Mat g;
+  cv::GaussianBlur(grey, g, cv::Size(0, 0), p.sigma, p.sigma, cv::BORDER_REPLICATE);
+  // Derivatives of the smoothed image by central differences (Sobel 3x3, normalised).
+  cv::Mat rx, ry, rxx, rxy, ryy;
+  cv::Sobel(g, rx, CV_32F, 1, 0, 3, 1.0 / 8, 0, cv::BORDER_REPLICATE);
+  cv::Sobel(g, ry, CV_32F, 0, 1, 3, 1.0 / 8, 0, cv::BORDER_REPLICATE);
+  cv::Sobel(g, rxx, CV_32F, 2, 0, 3, 1.0 / 4, 0, cv::BORDER_REPLICATE);
+  cv::Sobel(g, ryy, CV_32F, 0, 2, 3, 1.0 / 4, 0, cv::BORDER_REPLICATE);
+  cv::Sobel(g, rxy, CV_32F, 1, 1, 3, 1.0 / 16, 0, cv::BORDER_REPLICATE);
+  const int W = g.cols, H = g.rows;
+  std::vector<int> at(size_t(W) * H, -1);  // pixel -> line point index
+  // Line points row by row in parallel, then numbered in row order.
+  std::vector<std::vector<LinePoint>> rows(static_cast<size_t>(H));
+  std::vector<std::vector<int>> row_x(static_cast<size_t>(H));
+#pragma omp parallel for schedule(dynamic, 16)
+  for (int y = 0; y < H; ++y) {
+    const float *px = rx.ptr<float>(y), *py = ry.ptr<float>(y), *pxx = rxx.ptr<float>(y), *pxy = rxy.ptr<float>(y),
+                *pyy = ryy.ptr<float>(y), *pg = g.ptr<float>(y);
+    for (int x = 0; x < W; ++x) {
+      if (pg[x] > p.max_intensity) continue;
+      // Largest eigenvalue of the Hessian and its eigenvector n (across the line).
+      const double a = pxx[x], b = pxy[x], c = pyy[x];
+      const double mean = 0.5 * (a + c), d = std::sqrt(0.25 * (a - c) * (a - c) + b * b);
+      const double lambda = mean + d;
+      if (lambda < p.min_strength) continue;
+      // Along a line the profile is flat: a dot of stippling (or a blot) curves both ways.
+      if (mean - d > kMaxAlongRatio * lambda) continue;
+      double nx, ny;
+      if (std::abs(b) > 1e-12)
+        nx = b, ny = lambda - a;
+      else if (a >= c)
+        nx = 1, ny = 0;
+      else
+        nx = 0, ny = 1;
+      const double nn = std::hypot(nx, ny);
+      nx /= nn, ny /= nn;
+      const double t = -(px[x] * nx + py[x] * ny) / lambda;  // to the profile's minimum along n
+      if (std::abs(t * nx) > 0.5 || std::abs(t * ny) > 0.5) continue;
+      rows[size_t(y)].push_back({float(x + t * nx), float(y + t * ny), float(-ny), float(nx), float(lambda)});
+      row_x[size_t(y)].push_back(x);
+    }
+  }
+  std::vector<LinePoint> pts;
+  for (int y = 0; y < H; ++y)
+    for (size_t k = 0; k < rows[size_t(y)].size(); ++k) {
+      at[size_t(y) * W + row_x[size_t(y)][k]] = int(pts.size());
+      pts.push_back(rows[size_t(y)][k]);
+    }
+  out.line_points = static_cast<long long>(pts.size());
+
+  // Linking: from the strongest unused point, follow the line both ways to the best neighbouring
+  // point ahead (within the 8-neighbourhood, along the direction, close and turning little).
+  std::vector<int> order(pts.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int i, int j) { return pts[i].strength > pts[j].strength; });
+  std::vector<int> chain_of(pts.size(), -1);  // which chain a point was linked into
+  const double cos_turn = std::cos(p.max_link_turn);
+  // The best point ahead of point i along (dirx, diry): unused points first; when only points of
+  // other chains are ahead, the nearest of them is returned with `other` set (a junction).
+  auto next_point = [&](int i, double dirx, double diry, int chain, bool& other) {
+    const LinePoint& q = pts[i];
+    const int cx = int(std::lround(q.x)), cy = int(std::lround(q.y));
+    int best = -1, best_other = -1;
+    double best_cost = 1e300, best_other_cost = 1e300;
+    other = false;
+    for (int oy = -1; oy <= 1; ++oy)
+      for (int ox = -1; ox <= 1; ++ox) {
+        if (!ox && !oy) continue;
+        const int x = cx + ox, y = cy + oy;
+        if (x < 0 || y < 0 || x >= W || y >= H) continue;
+        const int j = at[size_t(y) * W + x];
+        if (j < 0 || j == i || chain_of[size_t(j)] == chain) continue;
+        const double vx = pts[j].x - q.x, vy = pts[j].y - q.y, dist = std::hypot(vx, vy);
+        if (dist > p.max_link_gap || dist < 1e-6) continue;
+        if ((vx * dirx + vy * diry) / dist < 0.5) continue;  // ahead, within 60 degrees
+        const double turn = std::abs(pts[j].dx * dirx + pts[j].dy * diry);
+        if (turn < cos_turn) continue;
+        const double cost = dist + 2 * (1 - turn);
+        if (chain_of[size_t(j)] < 0) {
+          if (cost < best_cost) best_cost = cost, best = j;
+        } else if (cost < best_other_cost) {
+          best_other_cost = cost, best_other = j;
+        }
+      }
+    if (best >= 0) return best;
+    other = best_other >= 0;
+    return best_other;
+  };
+  int chains = 0;
+  std::vector<std::vector<Vec2>> pieces;
+  for (int s : order) {
+    if (chain_of[size_t(s)] >= 0) continue;
+    const int id = chains++;
+    chain_of[size_t(s)] = id;
+    std::vector<int> chain{s};
+    for (int side = 0; side < 2; ++side) {
+      std::vector<int> ext;
+      int cur = s;
+      double dirx = side ? -pts[s].dx : pts[s].dx, diry = side ? -pts[s].dy : pts[s].dy;
+      for (;;) {
+        bool other = false;
+        const int n = next_point(cur, dirx, diry, id, other);
+        if (n < 0) break;
+        if (other) {  // ran into another curve: a junction, this curve ends there
+          out.junctions.push_back(Vec2(pts[n].x, pts[n].y));
+          ext.push_back(n);
+          break;
+        }
+        chain_of[size_t(n)] = id;
+        ext.push_back(n);
+        const double ndx = pts[n].dx, ndy = pts[n].dy;  // keep the orientation continuous
+        if (ndx * dirx + ndy * diry >= 0)
+          dirx = ndx, diry = ndy;
+        else
+          dirx = -ndx, diry = -ndy;
+        cur = n;
+      }
+      if (side == 0)
+        chain.insert(chain.end(), ext.begin(), ext.end());
+      else
+        chain.insert(chain.begin(), ext.rbegin(), ext.rend());
+    }
+    std::vector<Vec2> poly;
+    poly.reserve(chain.size());
+    for (int i : chain) poly.push_back(Vec2(pts[i].x, pts[i].y));
+    if (poly.size() >= 2) pieces.push_back(std::move(poly));
+  }
+  join_pieces(pieces, p);
+  for (auto& poly : pieces) {
+    double len = 0;
+    for (size_t i = 1; i < poly.size(); ++i) len += (poly[i] - poly[i - 1]).norm();
+    if (len < p.min_length) {
+      ++out.dropped_short;
+      continue;
+    }
+    out.curves.push_back(std::move(poly));
+  }
+  return out;
+}
+
+}  // namespace reliefkit

@@ -1,0 +1,160 @@
+#include "reliefkit/multiscale/multiscale.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "reliefkit/base/curve_selection.h"
+
+namespace reliefkit {
+
+void normalise_curve_strengths(Polylines& curves, const OptimalScale& scale, double gamma, int power) {
+  const double h = scale.scale.edge;
+  const int np = static_cast<int>(curves.points.size());
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < np; ++i) {
+    const auto [a, b] = curves.point_edge[i];
+    const double w = curves.point_weight[i];
+    (void)w;
+    // The smaller scale of the edge's two ends: where the scale changes quickly (a fine feature
+    // next to smooth ground), the larger one would amplify the finer side's curvature.
+    const double s = std::min(scale.sigma[a], scale.sigma[b]) / h;
+    curves.strength[i] *= std::pow(s * s, gamma) * std::pow(h, power);
+  }
+}
+
+void drop_banks(Polylines& curves, const OptimalScale& scale, int flanked_sign) {
+  if (scale.bank_sign.empty()) return;
+  auto bank = [&](int v) {
+    // In a flanking feature's footprint and weaker than kBankRatio x it, or of the opposite
+    // kind where it lies (a crest line drawn along a groove's floor by noise).
+    return (scale.bank_sign[v] == flanked_sign && scale.own_strength[v] < kBankRatio * scale.bank_strength[v]) ||
+           scale.own_sign[v] == flanked_sign;
+  };
+  std::vector<char> keep(curves.segments.size(), 1);
+  for (size_t k = 0; k < curves.segments.size(); ++k) {
+    int near_bank = 0;
+    for (int p : curves.segments[k]) {
+      const auto [a, b] = curves.point_edge[p];
+      near_bank += bank(curves.point_weight[p] < 0.5 ? a : b);
+    }
+    keep[k] = near_bank < 2;
+  }
+  curves = select_segments(curves, keep);
+}
+
+namespace {
+
+// The optimal scale with its smoothed surface, as a mesh of the input's connectivity.
+TriMesh optimally_smoothed(const TriMesh& mesh, OptimalScaleOptions& opt, OptimalScale& out) {
+  opt.smoothed_surface = true;
+  out = optimal_scale(mesh, opt);
+  TriMesh smoothed;
+  smoothed.faces = mesh.faces;
+  smoothed.vertices = std::move(out.smoothed);
+  out.smoothed.clear();
+  return smoothed;
+}
+
+}  // namespace
+
+MultiscaleRidgeValleys multiscale_ridges_valleys(const TriMesh& mesh, OptimalScaleOptions opt,
+                                                 RidgeValleyParams params) {
+  params.validate();
+  opt.curve = ScaleStrength::RidgesValleys;
+  MultiscaleRidgeValleys r;
+  TriMesh smoothed = optimally_smoothed(mesh, opt, r.scale);
+  params.presmoothing = Length::in_edges(0);
+  RidgeValleyResult& c = r.curves;
+  static_cast<ScaledCurvature&>(c) = begin_curve_filter(Surface::borrow(smoothed), params);
+  c.min_length = params.min_length_edges * r.scale.scale.edge;
+  if (params.progress) params.progress(95, "Multi-scale ridges and valleys");
+  // All crossings, their strengths normalised as in the scale selection, so that a fine and a
+  // coarse feature of the same depth compare equal; the automatic threshold then sits above
+  // what noise alone reaches (OptimalScale::strength_floor).
+  for (bool valleys : {false, true}) {
+    Polylines all = ridge_lines(smoothed, c.curvature, valleys, 0.0);
+    // The curvature across the line over the base's (on a curved object the base's own
+    // curvature, times σ², would make every smooth area strong).
+    std::vector<double> feature(static_cast<size_t>(smoothed.n_vertices()));
+    for (int v = 0; v < smoothed.n_vertices(); ++v) {
+      const Vec3& d = valleys ? c.curvature.dir2[v] : c.curvature.dir1[v];
+      const double k = (valleys ? c.curvature.k2[v] : c.curvature.k1[v]) - d.dot(r.scale.base_shape[v] * d);
+      feature[v] = valleys ? -k : k;
+    }
+    for (size_t i = 0; i < all.points.size(); ++i) {
+      const auto [a, b] = all.point_edge[i];
+      all.strength[i] = (1 - all.point_weight[i]) * feature[a] + all.point_weight[i] * feature[b];
+    }
+    normalise_curve_strengths(all, r.scale, opt.effective_gamma(), 1);
+    drop_banks(all, r.scale, valleys ? 1 : -1);
+    std::vector<double> seg(all.segments.size());
+    for (size_t k = 0; k < seg.size(); ++k) seg[k] = 0.5 * (all.strength[all.segments[k][0]] + all.strength[all.segments[k][1]]);
+    double strongest = 0;
+    for (double x : seg) strongest = std::max(strongest, x);
+    // The noise term of the automatic threshold is kNoiseFactor x its argument; the floor is
+    // already the noise's 99th percentile.
+    const double threshold =
+        params.relative_threshold * automatic_curve_threshold(kCurveNoise * r.scale.strength_floor / kNoiseFactor, seg);
+    Polylines kept = drop_short_chains(keep_strong_segments(all, threshold), c.min_length);
+    place_on_mesh(mesh, kept);
+    (valleys ? c.valleys : c.ridges) = std::move(kept);
+    (valleys ? c.valley_threshold : c.ridge_threshold) = threshold;
+    (valleys ? c.strongest_valley : c.strongest_ridge) = strongest;
+  }
+  r.scale.smoothed = std::move(smoothed.vertices);
+  return r;
+}
+
+std::vector<double> noise_tilt_at_scales(const OptimalScale& s, double final_smoothing_edges, long long faces) {
+  const double h = s.scale.edge;
+  const int nl = static_cast<int>(s.levels.size()), nv = static_cast<int>(s.sigma.size());
+  std::vector<double> level_tilt(static_cast<size_t>(nl)), u(static_cast<size_t>(nl));
+  for (int k = 0; k < nl; ++k) {
+    u[k] = std::log(s.levels[k] / h);
+    // The level's smoothing and the final one, as Gaussian widths add.
+    level_tilt[k] = std::max(noise_tilt(s.noise, std::hypot(s.levels[k] / h, final_smoothing_edges), noise_patch_cells(faces)), 1e-12);
+  }
+  std::vector<double> tilt(static_cast<size_t>(nv), level_tilt.front());
+#pragma omp parallel for schedule(static)
+  for (int v = 0; v < nv; ++v) {
+    if (!(s.sigma[v] > 0)) continue;
+    const double x = std::clamp(std::log(s.sigma[v] / h), u.front(), u.back());
+    int k = 0;
+    while (k + 2 < nl && u[k + 1] < x) ++k;
+    const int k1 = std::min(k + 1, nl - 1);
+    const double w = u[k1] > u[k] ? std::clamp((x - u[k]) / (u[k1] - u[k]), 0.0, 1.0) : 0.0;
+    tilt[v] = std::exp((1 - w) * std::log(level_tilt[k]) + w * std::log(level_tilt[k1]));  // log-linear in log σ
+  }
+  return tilt;
+}
+
+MultiscaleReliefEdges multiscale_relief_edges(const TriMesh& mesh, OptimalScaleOptions opt, ReliefEdgeParams params) {
+  params.validate();
+  opt.curve = ScaleStrength::ReliefEdges;
+  MultiscaleReliefEdges r;
+  TriMesh smoothed = optimally_smoothed(mesh, opt, r.scale);
+  // The detector on the smoothed surface, without pre-smoothing of its own, told what varies with
+  // the scale (each measured on the test relief, docs/multiscale.md):
+  // - the base: the surface at kReliefBaseFactor x the largest scale — its normals for the tilt, its
+  //   shape operator for G (on a curved object a wide step's G crossed zero off its centre);
+  // - the noise: the tilt noise leaves at each vertex's own scale (one threshold for all let the
+  //   fine scales' noise through or cut the coarse scales' soft steps);
+  // - the fit-error radius: kFitRadiusWidths x the vertex's scale (a soft step read at 10 edge
+  //   lengths does not fit within the fine features' 4);
+  // - only crossings where the slope is steepest (a soft footprint's flat wiggles crossed too).
+  params.presmoothing = Length::in_edges(0);
+  params.given_base_normals = &r.scale.base_normal;
+  params.given_base_shape = &r.scale.base_shape;
+  const std::vector<double> noise = noise_tilt_at_scales(r.scale, opt.final_smoothing_edges, mesh.n_faces());
+  params.vertex_noise_tilt = &noise;
+  params.vertex_feature_width = &r.scale.sigma;
+  params.steepest_only = true;
+  params.tilt_across = true;
+  r.curves = compute_relief_edges(smoothed, params);
+  r.noise_angle = r.curves.noise_angle;
+  place_on_mesh(mesh, r.curves.edges);
+  r.scale.smoothed = std::move(smoothed.vertices);
+  return r;
+}
+
+}  // namespace reliefkit

@@ -1,0 +1,246 @@
+#include "reliefkit/multiscale/scale_space.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "reliefkit/base/laplacian.h"
+
+namespace reliefkit {
+
+namespace {
+
+// The symmetric system of one kind of unknowns (interior or boundary-loop vertices): the
+// stiffness restricted to them, the mass, and the stiffness towards the vertices whose positions
+// are known when it is solved.
+struct Block {
+  std::vector<int> vertex;                  // unknown -> mesh vertex
+  Eigen::SparseMatrix<double> K;            // stiffness among the unknowns (positive semi-definite)
+  Eigen::VectorXd mass;                     // per unknown
+  std::vector<std::vector<std::pair<int, double>>> known;  // per unknown: (mesh vertex, weight) of known neighbours
+};
+
+// (M + Δτ K) D = -Δτ (K X_unknown + K_known X_known): the displacement over one step. A keeps K's
+// structure (every row holds its diagonal); only its values change from step to step.
+SolveReport step(const Block& b, double dtau, Eigen::SparseMatrix<double>& A, const std::vector<int>& diagonal,
+                 std::vector<Vec3>& x, const ScaleSpaceOptions& opt) {
+  const int n = static_cast<int>(b.vertex.size());
+  if (n == 0) return {};
+  const Eigen::Index nnz = b.K.nonZeros();
+  const double* k = b.K.valuePtr();
+  double* a = A.valuePtr();
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index i = 0; i < nnz; ++i) a[i] = dtau * k[i];
+  for (int i = 0; i < n; ++i) a[diagonal[i]] += b.mass[i];
+  Eigen::MatrixXd X(n, 3);
+  for (int i = 0; i < n; ++i) X.row(i) = x[b.vertex[i]].transpose();
+  // K is symmetric: its row-major view (the same arrays) multiplies on every core.
+  const Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor>> K(n, n, nnz, b.K.outerIndexPtr(),
+                                                                         b.K.innerIndexPtr(), k);
+  Eigen::MatrixXd B = -dtau * (K * X);
+  for (int i = 0; i < n; ++i)
+    for (const auto& [v, w] : b.known[i]) B.row(i) -= dtau * w * x[v].transpose();
+  SolverOptions so;
+  so.method = opt.method;
+  so.tolerance = opt.tolerance;
+  so.prefer_direct = predicted_cg_iterations(A, b.mass) > kDirectAboveIterations;
+  so.label = "Scale space";
+  Eigen::MatrixXd D;
+  SolveReport rep = solve_spd(A, B, D, so);
+  for (int i = 0; i < n; ++i) x[b.vertex[i]] += D.row(i).transpose();
+  return rep;
+}
+
+// n forward-Euler steps of size dtau: X += -dtau M⁻¹ (K X + K_known X_known). Stable (and
+// monotone) for dtau below 1 / gershgorin_bound(b).
+void explicit_steps(const Block& b, double dtau, long long n, std::vector<Vec3>& x, std::vector<Vec3>& d) {
+  const int nu = static_cast<int>(b.vertex.size());
+  if (nu == 0) return;
+  d.resize(size_t(nu));
+  const int* outer = b.K.outerIndexPtr();
+  const int* inner = b.K.innerIndexPtr();
+  const double* k = b.K.valuePtr();
+  for (long long s = 0; s < n; ++s) {
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < nu; ++i) {
+      Vec3 acc = Vec3::Zero();
+      for (int p = outer[i]; p < outer[i + 1]; ++p) acc += k[p] * x[b.vertex[inner[p]]];  // K symmetric: column = row
+      for (const auto& [v, w] : b.known[i]) acc += w * x[v];
+      d[i] = (-dtau / b.mass[i]) * acc;
+    }
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < nu; ++i) x[b.vertex[i]] += d[i];
+  }
+}
+
+// Gershgorin bound on the largest eigenvalue of M⁻¹K: max_i (K_ii + sum_j≠i |K_ij|) / M_i.
+double gershgorin_bound(const Block& b) {
+  double bound = 0;
+  for (int i = 0; i < static_cast<int>(b.vertex.size()); ++i) {
+    double row = 0;
+    for (int p = b.K.outerIndexPtr()[i]; p < b.K.outerIndexPtr()[i + 1]; ++p) row += std::abs(b.K.valuePtr()[p]);
+    bound = std::max(bound, row / b.mass[i]);
+  }
+  return bound;
+}
+
+// Median of K_ii / M_i: with it, predicted_cg_iterations of M + dtau K is 5.5 sqrt(1 + dtau q).
+double median_stiffness(const Block& b) {
+  std::vector<double> q;
+  q.reserve(b.vertex.size());
+  for (int i = 0; i < static_cast<int>(b.vertex.size()); ++i) q.push_back(b.K.coeff(i, i) / b.mass[i]);
+  if (q.empty()) return 0;
+  std::nth_element(q.begin(), q.begin() + q.size() / 2, q.end());
+  return q[q.size() / 2];
+}
+
+// Where each row's diagonal entry sits in the compressed arrays.
+std::vector<int> diagonal_positions(const Eigen::SparseMatrix<double>& K) {
+  std::vector<int> pos(size_t(K.cols()), -1);
+  for (int c = 0; c < K.cols(); ++c)
+    for (int p = K.outerIndexPtr()[c]; p < K.outerIndexPtr()[c + 1]; ++p)
+      if (K.innerIndexPtr()[p] == c) pos[c] = p;
+  return pos;
+}
+
+}  // namespace
+
+ScaleSpaceReport scale_space(const TriMesh& mesh, const std::vector<double>& sigmas, const ScaleSpaceOptions& opt,
+                             const std::function<void(int, const TriMesh&)>& visit) {
+  require_triangles(mesh);
+  for (size_t k = 0; k < sigmas.size(); ++k)
+    if (!(sigmas[k] > 0) || !std::isfinite(sigmas[k]) || (k > 0 && !(sigmas[k] > sigmas[k - 1])))
+      throw InputError("scale space: the scales must be positive, finite and increasing");
+  const int nv = mesh.n_vertices();
+  const MeshTopology own = opt.topology ? MeshTopology() : mesh_topology(mesh);
+  const MeshTopology& topo = opt.topology ? *opt.topology : own;
+  const LaplacianResult lap0 = cotangent_laplacian(mesh, topo);
+
+  // Who is what: interior (no boundary neighbour, some area), boundary loop (two boundary
+  // neighbours), fixed (the rest).
+  enum Kind : char { kInterior, kLoop, kFixed };
+  std::vector<char> kind(nv, kFixed);
+  std::vector<int> index(nv, -1);
+  Block inner, loop;
+  ScaleSpaceReport report;
+  for (int v = 0; v < nv; ++v) {
+    const int nb = topo.border.offset[v + 1] - topo.border.offset[v];
+    if (nb == 0 && lap0.mass[v] > 0) {
+      kind[v] = kInterior, index[v] = int(inner.vertex.size()), inner.vertex.push_back(v);
+    } else if (nb == 2) {
+      kind[v] = kLoop, index[v] = int(loop.vertex.size()), loop.vertex.push_back(v);
+    } else {
+      ++report.fixed_vertices;
+    }
+  }
+  report.boundary_vertices = static_cast<int>(loop.vertex.size());
+
+  // The operator of a geometry: the blocks' stiffness and mass, their system matrices' structure,
+  // and the figures of the cost model.
+  Eigen::SparseMatrix<double> inner_A, loop_A;
+  std::vector<int> inner_diag, loop_diag;
+  double bound = 0, stiff = 0;
+  auto assemble = [&](const TriMesh& geometry, const LaplacianResult& lap) {
+    // Interior block: K = -L restricted; the weights towards loop and fixed vertices are known terms.
+    {
+      const int n = static_cast<int>(inner.vertex.size());
+      std::vector<Eigen::Triplet<double>> trip;
+      const Eigen::VectorXd old_mass = inner.mass;
+      inner.mass.resize(n);
+      inner.known.assign(size_t(n), {});
+      for (int i = 0; i < n; ++i) {
+        const int v = inner.vertex[i];
+        // A vertex whose area vanished on the way keeps its last one (the system stays definite).
+        inner.mass[i] = lap.mass[v] > 0 ? lap.mass[v] : old_mass.size() == n ? old_mass[i] : lap0.mass[v];
+        for (Eigen::SparseMatrix<double>::InnerIterator it(lap.L, v); it; ++it) {
+          const int u = static_cast<int>(it.row());
+          if (kind[u] == kInterior) trip.emplace_back(i, index[u], -it.value());
+          else inner.known[i].push_back({u, -it.value()});  // a stiffness entry, like the loop block's
+        }
+      }
+      inner.K.resize(n, n);
+      inner.K.setFromTriplets(trip.begin(), trip.end());
+    }
+    // Loop block: 1-D stiffness along the boundary polylines, weight 1 / edge length, mass half the
+    // adjacent boundary edges.
+    {
+      const int n = static_cast<int>(loop.vertex.size());
+      std::vector<Eigen::Triplet<double>> trip;
+      loop.mass.setZero(n);
+      loop.known.assign(size_t(n), {});
+      for (int i = 0; i < n; ++i) {
+        const int v = loop.vertex[i];
+        double diag = 0;
+        for (int k = topo.border.offset[v]; k < topo.border.offset[v + 1]; ++k) {
+          const int u = topo.border.vertex[k];
+          const double len = (geometry.vertices[v] - geometry.vertices[u]).norm();
+          if (!(len > 0)) continue;
+          loop.mass[i] += 0.5 * len;
+          diag += 1 / len;
+          if (kind[u] == kLoop) trip.emplace_back(i, index[u], -1 / len);
+          else loop.known[i].push_back({u, -1 / len});  // K_known has the sign of the stiffness
+        }
+        trip.emplace_back(i, i, diag);
+        if (!(loop.mass[i] > 0)) loop.mass[i] = 1;  // a loop of coincident points: stays put
+      }
+      loop.K.resize(n, n);
+      loop.K.setFromTriplets(trip.begin(), trip.end());
+    }
+    inner.K.makeCompressed();
+    loop.K.makeCompressed();
+    inner_A = inner.K, loop_A = loop.K;
+    inner_diag = diagonal_positions(inner.K), loop_diag = diagonal_positions(loop.K);
+    // Cost model of one level, in sparse products: explicit steps need dtau * bound of them;
+    // implicit ones about 2 per conjugate-gradient iteration (capped where Cholesky takes over).
+    bound = std::max(gershgorin_bound(inner), gershgorin_bound(loop));
+    stiff = std::max(median_stiffness(inner), median_stiffness(loop));
+  };
+  assemble(mesh, lap0);
+
+  TriMesh work;
+  work.faces = mesh.faces;
+  work.vertices = mesh.vertices;
+  std::vector<Vec3> scratch;
+  double tau = 0;
+  const int substeps = std::max(1, opt.substeps);
+  for (size_t level = 0; level < sigmas.size(); ++level) {
+    if (opt.progress) opt.progress(int(100 * level / sigmas.size()), "Scale space");
+    if (level > 0 && opt.reweight) assemble(work, cotangent_laplacian(work, topo));
+    const double target = 0.5 * sigmas[level] * sigmas[level];
+    // `substeps` steps per doubling of the diffusion time (at least that many per level): a level
+    // far above the previous one is not crossed by a few huge steps.
+    const int steps = tau > 0 ? std::max(substeps, int(std::ceil(substeps * std::log2(target / tau)))) : substeps;
+    const double dtau = (target - tau) / steps;
+    const double explicit_cost = std::ceil((target - tau) * bound);
+    const double implicit_cost = steps * 2.0 * std::min(kDirectAboveIterations, 5.5 * std::sqrt(1 + dtau * stiff));
+    const bool use_explicit = opt.stepping == ScaleSpaceOptions::Stepping::Explicit ||
+                              (opt.stepping == ScaleSpaceOptions::Stepping::Auto && explicit_cost <= implicit_cost &&
+                               explicit_cost < 1e7);
+    report.level_explicit.push_back(use_explicit);
+    if (use_explicit) {
+      const long long n = std::max(1LL, static_cast<long long>(explicit_cost));
+      const double h = (target - tau) / double(n);
+      for (long long s = 0; s < n; ++s) {  // the loop first: the interior reads it
+        explicit_steps(loop, h, 1, work.vertices, scratch);
+        explicit_steps(inner, h, 1, work.vertices, scratch);
+      }
+      report.explicit_steps += n;
+    } else {
+      for (int s = 0; s < steps; ++s) {
+        for (int which = 0; which < 2; ++which) {  // the loop first: the interior takes it as known
+          const Block& b = which == 0 ? loop : inner;
+          SolveReport rep = step(b, dtau, which == 0 ? loop_A : inner_A, which == 0 ? loop_diag : inner_diag,
+                                 work.vertices, opt);
+          if (b.vertex.empty()) continue;
+          report.converged = report.converged && rep.converged;
+          report.solves.push_back(std::move(rep));
+        }
+      }
+      report.implicit_steps += steps;
+    }
+    tau = target;
+    visit(static_cast<int>(level), work);
+  }
+  return report;
+}
+
+}  // namespace reliefkit

@@ -1,0 +1,86 @@
+#include "reliefkit/relief_edges/ridges.h"
+#include "reliefkit/base/curve_selection.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace reliefkit {
+
+Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength,
+                      std::vector<double>* all_strengths) {
+  if (c.dcurv.size() != c.k1.size()) throw InputError("ridges and valleys need the curvature derivative tensor");
+  const int nv = mesh.n_vertices();
+  std::vector<double> value(nv), strength(nv);
+  for (int v = 0; v < nv; ++v) {
+    value[v] = valleys ? c.dcurv[v].d : c.dcurv[v].a;  // derivative of k2 along t2 / of k1 along t1
+    strength[v] = valleys ? -c.k2[v] : c.k1[v];
+  }
+  DirectionalFieldView f;
+  f.direction = valleys ? c.dir2.data() : c.dir1.data();
+  f.value = value.data();
+  f.strength = strength.data();
+  f.size = size_t(nv);
+  f.axial = true;
+  f.value_along = [&c](int v, const Vec3& t) { return c.derivative_along(v, t); };
+  f.strength_along = [&c, valleys](int v, const Vec3& t) {
+    double k = c.normal_curvature(v, t);
+    return valleys ? -k : k;
+  };
+  ZeroCrossingOptions o;
+  o.min_strength = min_strength;
+  o.all_strengths = all_strengths;
+  // Keep maxima of k1 (the derivative decreases along t1) for ridges, minima of k2 for valleys:
+  // the gradient of the linearly interpolated derivative across the face, against the face's
+  // mean direction.
+  o.accept_face = [&mesh, valleys](int face, const double val[3], const Vec3 dir[3]) {
+    const double along = face_gradient(mesh, face, val).dot(dir[0] + dir[1] + dir[2]);
+    return valleys ? along > 0 : along < 0;
+  };
+  return extract_zero_crossings(mesh, c.normal, f, o);
+}
+
+void RidgeValleyParams::validate() const {
+  presmoothing.check("Pre-smoothing", 0, 100);
+  require_range(relative_threshold, "Strength threshold", 0, 1000);
+  require_range(min_length_edges, "Minimum curve length (edge lengths)", 0, 1e6);
+}
+
+RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyParams& p) {
+  return compute_ridges_valleys(Surface::borrow(mesh), p);
+}
+
+RidgeValleyResult compute_ridges_valleys(const Surface& surface, const RidgeValleyParams& p) {
+  const TriMesh& mesh = surface.mesh();
+  RidgeValleyResult r;
+  static_cast<ScaledCurvature&>(r) = begin_curve_filter(surface, p);
+  r.min_length = p.min_length_edges * r.scale.edge;
+  if (p.progress) p.progress(90, "Ridges and valleys");
+  std::vector<double> kmax(r.curvature.k1.size()), kmin(r.curvature.k2.size());
+  for (size_t v = 0; v < kmax.size(); ++v) kmax[v] = std::abs(r.curvature.k1[v]), kmin[v] = std::abs(r.curvature.k2[v]);
+  kmax = counted_values(kmax, r.scale.counts);
+  kmin = counted_values(kmin, r.scale.counts);
+  // Segments below relative x the noise term are never kept: only their strengths are collected.
+  // Noise scale: the median curvature magnitude, but at least 1 % of the 99th percentile: on
+  // exactly flat (synthetic) regions the median is ~0 and numerical wiggles of the derivative
+  // would pass as ridges.
+  auto noise_scale = [](std::vector<double> k) {
+    double med = median_positive(k);
+    if (k.empty()) return med;
+    auto p99 = k.begin() + static_cast<long>(0.99 * double(k.size() - 1));
+    std::nth_element(k.begin(), p99, k.end());
+    return std::max(med, 0.01 * *p99);
+  };
+  const double noise_r = noise_scale(kmax), noise_v = noise_scale(kmin);
+  std::vector<double> str_r, str_v;
+  Polylines cand_r = ridge_lines(mesh, r.curvature, false, p.relative_threshold * kNoiseFactor * noise_r, &str_r);
+  Polylines cand_v = ridge_lines(mesh, r.curvature, true, p.relative_threshold * kNoiseFactor * noise_v, &str_v);
+  for (double x : str_r) r.strongest_ridge = std::max(r.strongest_ridge, x);
+  for (double x : str_v) r.strongest_valley = std::max(r.strongest_valley, x);
+  r.ridge_threshold = p.relative_threshold * automatic_curve_threshold(noise_r, std::move(str_r));
+  r.valley_threshold = p.relative_threshold * automatic_curve_threshold(noise_v, std::move(str_v));
+  r.ridges = drop_short_chains(keep_strong_segments(cand_r, r.ridge_threshold), r.min_length);
+  r.valleys = drop_short_chains(keep_strong_segments(cand_v, r.valley_threshold), r.min_length);
+  return r;
+}
+
+}  // namespace reliefkit

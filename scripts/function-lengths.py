@@ -1,0 +1,54 @@
+#!/usr/bin/env python3
+"""Lists the longest functions of the C++ sources (issue 21: none over ~100 lines).
+
+A function is a definition that starts in column 0 (or inside a namespace, also column 0 in this
+code base) with a line ending in '{' and ends at the matching '}' in column 0. Lambdas and nested
+classes count towards the function that holds them.
+Usage: scripts/function-lengths.py [--limit N] [paths...]   (exit 1 when one is over the limit)
+"""
+import argparse, pathlib, re, sys
+
+SIGNATURE_END = re.compile(r'\)\s*(const)?\s*(noexcept)?\s*(override)?\s*(->\s*[\w:<>, ]+)?\s*\{\s*(//.*)?$')
+
+
+def functions(path):
+    lines = path.read_text(errors='replace').splitlines()
+    i = 0
+    while i < len(lines):
+        line = lines[i]
+        starts = line[:1] not in ('', ' ', '\t', '#', '/', '}', '{') and not line.startswith(('namespace', 'struct', 'class', 'enum', 'using', 'template <', 'static const', 'const '))
+        if starts:
+            j = i
+            while j < len(lines) and j < i + 8 and not SIGNATURE_END.search(lines[j]) and not lines[j].rstrip().endswith(';'):
+                j += 1
+            if j < len(lines) and SIGNATURE_END.search(lines[j]):
+                k = j + 1
+                while k < len(lines) and not lines[k].startswith('}'):
+                    k += 1
+                name = re.sub(r'\(.*', '', line).split()[-1] if '(' in line else line.strip()
+                yield name, i + 1, k - i + 1
+                i = k
+        i += 1
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument('--limit', type=int, default=100)
+    ap.add_argument('--top', type=int, default=15)
+    ap.add_argument('paths', nargs='*', default=['common', 'filter_demarcating', 'filter_relief_edges',
+                                                 'filter_multiscale', 'filter_prominent', 'filter_drawing_recon'])
+    a = ap.parse_args()
+    found = []
+    for root in a.paths:
+        for path in sorted(pathlib.Path(root).rglob('*.cpp')):
+            found += [(n, str(path), line, length) for n, line, length in functions(path)]
+    found.sort(key=lambda f: -f[3])
+    for name, path, line, length in found[:a.top]:
+        print(f'{length:5d}  {path}:{line}  {name}')
+    over = [f for f in found if f[3] > a.limit]
+    print(f'{len(found)} functions, {len(over)} over {a.limit} lines')
+    return 1 if over else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

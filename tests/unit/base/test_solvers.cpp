@@ -1,0 +1,190 @@
+// The shared sparse solver (reliefkit/base/solvers.h) and the fast cotangent-matrix assembly it is fed
+// with: known solutions, the fallback between the two library solvers, and failures that end in a
+// report instead of a crash.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "reliefkit/relief_edges/base_normals.h"
+#include "reliefkit/base/curvature.h"
+#include "reliefkit/base/laplacian.h"
+#include "reliefkit/base/solvers.h"
+#include "reliefs.h"
+#include "shapes.h"
+
+using namespace reliefkit;
+
+namespace {
+
+// A heat step's matrix M - t L on a jittered plane (SPD; condition number grows with t).
+Eigen::SparseMatrix<double> heat_matrix(const TriMesh& m, double t) {
+  LaplacianResult lap = cotangent_laplacian(m);
+  Eigen::SparseMatrix<double> A = lap.M - t * lap.L;
+  A.makeCompressed();
+  return A;
+}
+
+// Right-hand sides of a known smooth solution (three columns).
+Eigen::MatrixXd known_solution(const TriMesh& m) {
+  Eigen::MatrixXd X(m.n_vertices(), 3);
+  for (int v = 0; v < m.n_vertices(); ++v) {
+    const Vec3& p = m.vertices[v];
+    X.row(v) << std::sin(3 * p.x()) + p.y(), std::cos(2 * p.y()), p.x() * p.y() + 1;
+  }
+  return X;
+}
+
+double relative_error(const Eigen::MatrixXd& X, const Eigen::MatrixXd& truth) {
+  return (X - truth).norm() / truth.norm();
+}
+
+// The straightforward assembly (triplets, every face, no clamping) the fast one must reproduce.
+Eigen::SparseMatrix<double> triplet_laplacian(const TriMesh& m) {
+  std::vector<Eigen::Triplet<double>> trip;
+  for (const auto& f : m.faces) {
+    double cot[3];
+    bool ok = true;
+    for (int j = 0; j < 3; ++j) {
+      Vec3 a = m.vertices[f[(j + 1) % 3]] - m.vertices[f[j]], b = m.vertices[f[(j + 2) % 3]] - m.vertices[f[j]];
+      const double s = a.cross(b).norm();
+      cot[j] = a.dot(b) / s;
+      ok = ok && s > 0 && std::isfinite(cot[j]);
+    }
+    if (!ok) continue;
+    for (int j = 0; j < 3; ++j) {
+      const int p = f[(j + 1) % 3], q = f[(j + 2) % 3];
+      const double w = 0.5 * cot[j];
+      trip.emplace_back(p, q, w), trip.emplace_back(q, p, w), trip.emplace_back(p, p, -w), trip.emplace_back(q, q, -w);
+    }
+  }
+  Eigen::SparseMatrix<double> L(m.n_vertices(), m.n_vertices());
+  L.setFromTriplets(trip.begin(), trip.end());
+  return L;
+}
+
+}  // namespace
+
+TEST(Laplacian, RowAssemblyMatchesTripletsOnJitteredMeshesAndAFan) {
+  TriMesh fan;
+  fan.vertices.push_back({0, 0, 0.3});
+  const int n = 2000;
+  for (int i = 0; i < n; ++i) fan.vertices.push_back({std::cos(2 * M_PI * i / n), std::sin(2 * M_PI * i / n), 0});
+  for (int i = 0; i < n; ++i) fan.faces.push_back({0, 1 + i, 1 + (i + 1) % n});
+  for (const TriMesh& m : {rktest::height_field([](double x, double y) { return 0.2 * x * y; }, 1.0, 40, 0.4, 5),
+                           rktest::torus(1.0, 0.3, 60, 30, 0.3, 2), fan}) {
+    LaplacianResult fast = cotangent_laplacian(m);
+    const Eigen::SparseMatrix<double> ref = triplet_laplacian(m);
+    const double diff = Eigen::SparseMatrix<double>(fast.L - ref).norm();
+    EXPECT_LT(diff, 1e-12 * ref.norm()) << m.n_vertices() << " vertices";
+    // Rows are sorted and hold their diagonal (CHOLMOD and the row-major view rely on it).
+    for (int v = 0; v < m.n_vertices(); ++v) {
+      const int* c = fast.L.innerIndexPtr() + fast.L.outerIndexPtr()[v];
+      const int len = fast.L.outerIndexPtr()[v + 1] - fast.L.outerIndexPtr()[v];
+      ASSERT_TRUE(std::is_sorted(c, c + len));
+      ASSERT_TRUE(std::binary_search(c, c + len, v));
+    }
+  }
+}
+
+TEST(Solvers, BothSolversFindAKnownSolution) {
+  TriMesh m = rktest::height_field([](double, double) { return 0.0; }, 1.0, 60, 0.3, 7);
+  const double h = 2.0 / 60;
+  const Eigen::SparseMatrix<double> A = heat_matrix(m, 0.5 * std::pow(10 * h, 2));
+  const Eigen::MatrixXd truth = known_solution(m), B = A * truth;
+  for (SolverMethod method : {SolverMethod::Iterative, SolverMethod::Direct}) {
+    SolverOptions o;
+    o.method = method;
+    o.tolerance = 1e-10;
+    Eigen::MatrixXd X;  // no guess: starts from zero
+    SolveReport rep = solve_spd(A, B, X, o);
+    const double err = relative_error(X, truth);
+    std::printf("%s: error %.1e\n", rep.summary().c_str(), err);
+    EXPECT_TRUE(rep.converged);
+    EXPECT_LE(rep.residual, 1e-10);
+    EXPECT_LT(err, 1e-7);
+    // The report's residual is the one of the returned solution.
+    const double measured = (A * X - B).colwise().norm().cwiseQuotient(B.colwise().norm()).maxCoeff();
+    EXPECT_NEAR(rep.residual, measured, 1e-3 * measured + 1e-15);
+    EXPECT_EQ(rep.iterations > 0, method == SolverMethod::Iterative);
+  }
+}
+
+TEST(Solvers, AutoFallsBackToCholeskyWhenConjugateGradientsStop) {
+  TriMesh m = rktest::height_field([](double, double) { return 0.0; }, 1.0, 60, 0.3, 7);
+  const double h = 2.0 / 60;
+  const Eigen::SparseMatrix<double> A = heat_matrix(m, 0.5 * std::pow(40 * h, 2));
+  const Eigen::MatrixXd truth = known_solution(m), B = A * truth;
+  SolverOptions o;
+  o.tolerance = 1e-9;
+  o.max_iterations = 5;
+  // Iterative only: it stops, says so, and its residual is the true one.
+  o.method = SolverMethod::Iterative;
+  Eigen::MatrixXd X;
+  SolveReport it = solve_spd(A, B, X, o);
+  EXPECT_FALSE(it.converged);
+  EXPECT_EQ(it.iterations, 5);
+  EXPECT_GT(it.residual, 1e-6);
+  // Auto: conjugate gradients stop, Cholesky finishes, and the report says both.
+  o.method = SolverMethod::Auto;
+  X.resize(0, 0);
+  SolveReport rep = solve_spd(A, B, X, o);
+  std::printf("%s (%s)\n", rep.summary().c_str(), rep.note.c_str());
+  EXPECT_TRUE(rep.converged);
+  EXPECT_NE(rep.method.find("Cholesky"), std::string::npos);
+  EXPECT_NE(rep.note.find("stopped at 5 iterations"), std::string::npos);
+  EXPECT_LT(relative_error(X, truth), 1e-7);
+}
+
+TEST(Solvers, MatrixThatIsNotPositiveDefiniteEndsInAReport) {
+  // Indefinite: Cholesky must refuse, and Auto must not pretend to have converged.
+  const int n = 200;
+  Eigen::SparseMatrix<double> A(n, n);
+  for (int i = 0; i < n; ++i) A.insert(i, i) = (i % 2 ? -1.0 : 1.0) * (1 + i);
+  for (int i = 0; i + 1 < n; ++i) A.insert(i, i + 1) = A.insert(i + 1, i) = 0.3;
+  A.makeCompressed();
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Ones(n, 1);
+  SolverOptions o;
+  o.method = SolverMethod::Direct;
+  Eigen::MatrixXd X;
+  SolveReport d = solve_spd(A, B, X, o);
+  EXPECT_FALSE(d.converged);
+  EXPECT_NE(d.note.find("factorization failed"), std::string::npos) << d.note;
+  o.method = SolverMethod::Auto;
+  o.prefer_direct = true;
+  o.max_iterations = 50;
+  X.resize(0, 0);
+  SolveReport a = solve_spd(A, B, X, o);
+  const double measured = (A * X - B).norm() / B.norm();
+  EXPECT_EQ(a.converged, measured <= o.tolerance);
+  EXPECT_NEAR(a.residual, measured, 1e-6 * (1 + measured));
+  EXPECT_THROW(solve_spd(A, Eigen::MatrixXd::Ones(n + 1, 1), X, o), InputError);
+}
+
+TEST(BaseNormals, WideScaleIsSolvedByCholeskyAndAgreesWithConjugateGradients) {
+  rktest::ReliefShape s;
+  s.noise = 0.1;
+  rktest::Relief r = rktest::disc_on_sphere(s);
+  Curvature c = compute_curvature(r.mesh);
+  const double h = mesh_scale(r.mesh).edge;
+  BaseNormalOptions o;
+  o.scale = 15 * h;  // the default: conjugate gradients
+  BaseNormals narrow = estimate_base_normals(r.mesh, c.normal, o);
+  EXPECT_EQ(narrow.solve.method, "conjugate gradients");
+  EXPECT_TRUE(narrow.solve.converged);
+  o.scale = 100 * h;  // predicted well above the crossover: Cholesky
+  BaseNormals wide = estimate_base_normals(r.mesh, c.normal, o);
+  EXPECT_EQ(wide.solve.method, "Cholesky (CHOLMOD)");
+  EXPECT_GT(wide.expected_iterations, 400);
+  o.method = SolverMethod::Iterative;
+  o.tolerance = 1e-9;
+  o.max_iterations = 5000;
+  BaseNormals cg = estimate_base_normals(r.mesh, c.normal, o);
+  ASSERT_TRUE(cg.solve.converged) << cg.solve.summary();
+  double worst = 0;
+  for (size_t v = 0; v < wide.normal.size(); ++v)
+    worst = std::max(worst, std::acos(std::min(1.0, wide.normal[v].dot(cg.normal[v]))) * 180 / M_PI);
+  std::printf("base normals at 100 edges: %s; %s; largest angle between them %.2e deg\n",
+              wide.solve.summary().c_str(), cg.solve.summary().c_str(), worst);
+  EXPECT_LT(worst, 1e-3);
+}

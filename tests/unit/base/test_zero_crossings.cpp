@@ -1,0 +1,147 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "reliefkit/base/curve_selection.h"
+#include "reliefkit/base/zero_crossings.h"
+#include "shapes.h"
+
+using namespace reliefkit;
+
+namespace {
+TriMesh plane(int n, double jitter = 0.3) {
+  return rktest::height_field([](double, double) { return 0.0; }, 1.0, n, jitter, 5);
+}
+std::vector<Vec3> up(const TriMesh& m) { return std::vector<Vec3>(m.n_vertices(), Vec3(0, 0, 1)); }
+}  // namespace
+
+// f(v, t) = (x - 0.3) * (t . X): along the field t = X its zero set is the line x = 0.3.
+TEST(ZeroCrossings, StraightLineIsExactAndChained) {
+  TriMesh m = plane(40);
+  DirectionalField fld;
+  fld.direction.assign(m.n_vertices(), Vec3(1, 0, 0));
+  fld.value_along = [&](int v, const Vec3& t) { return (m.vertices[v].x() - 0.3) * t.x(); };
+  for (int v = 0; v < m.n_vertices(); ++v) fld.value.push_back(fld.value_along(v, fld.direction[v]));
+  fld.strength.assign(m.n_vertices(), 1.0);
+  Polylines p = extract_zero_crossings(m, up(m), fld);
+  ASSERT_FALSE(p.points.empty());
+  for (const auto& q : p.points) EXPECT_NEAR(q.x(), 0.3, 1e-12);
+  EXPECT_NEAR(p.total_length(), 2.0, 1e-9);
+  auto ch = p.chains();
+  ASSERT_EQ(ch.size(), 1u);
+  EXPECT_EQ(ch[0].size(), p.points.size());
+  EXPECT_EQ(p.rejected_faces, 0);
+  // Threshold: nothing survives a strength above every point's.
+  ZeroCrossingOptions strong;
+  strong.min_strength = 2.0;
+  EXPECT_TRUE(extract_zero_crossings(m, up(m), fld, strong).segments.empty());
+}
+
+TEST(ZeroCrossings, ClosedCircleChainsIntoOneLoop) {
+  TriMesh m = plane(60);
+  DirectionalField fld;
+  fld.direction.assign(m.n_vertices(), Vec3(1, 0, 0));
+  fld.value_along = [&](int v, const Vec3&) { return m.vertices[v].norm() - 0.5; };
+  for (int v = 0; v < m.n_vertices(); ++v) fld.value.push_back(fld.value_along(v, fld.direction[v]));
+  Polylines p = extract_zero_crossings(m, up(m), fld);
+  auto ch = p.chains();
+  ASSERT_EQ(ch.size(), 1u);
+  EXPECT_EQ(ch[0].front(), ch[0].back());
+  EXPECT_NEAR(p.total_length(), 2 * M_PI * 0.5, 0.01);
+}
+
+TEST(ZeroCrossings, InconsistentDirectionsAreRejectedOrRepaired) {
+  TriMesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  m.faces = {{0, 1, 2}};
+  std::vector<Vec3> n(3, Vec3(0, 0, 1));
+  DirectionalField fld;
+  // f(v, t) = t.x * (x - 0.5): only meaningful along x.
+  fld.value_along = [&](int v, const Vec3& t) { return t.x() * (m.vertices[v].x() - 0.5); };
+  // Vertices 0 and 1 agree (along x); vertex 2 points along y: it is re-evaluated along x.
+  fld.direction = {Vec3(1, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  for (int v = 0; v < 3; ++v) fld.value.push_back(fld.value_along(v, fld.direction[v]));
+  EXPECT_EQ(fld.value[2], 0.0);  // its own value is meaningless (zero)
+  Polylines p = extract_zero_crossings(m, n, fld);
+  ASSERT_EQ(p.segments.size(), 1u);
+  for (const auto& q : p.points) EXPECT_NEAR(q.x(), 0.5, 1e-12);  // crossings on edges 0-1 and 1-2
+  // No pair within pi/4: the face is dropped.
+  fld.direction = {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(-1, 0.1, 0).normalized()};
+  for (int v = 0; v < 3; ++v) fld.value[v] = fld.value_along(v, fld.direction[v]);
+  Polylines q = extract_zero_crossings(m, n, fld);
+  EXPECT_TRUE(q.segments.empty());
+  EXPECT_EQ(q.rejected_faces, 1);
+}
+
+TEST(ZeroCrossings, AxialFieldsIgnoreDirectionSign) {
+  TriMesh m = plane(40);
+  DirectionalField fld;
+  fld.axial = true;
+  fld.value_along = [&](int v, const Vec3& t) { return (m.vertices[v].y() + 0.2) * t.y(); };
+  rktest::Rng rng(9);
+  for (int v = 0; v < m.n_vertices(); ++v) {
+    fld.direction.push_back(rng.uniform() < 0.5 ? Vec3(0, 1, 0) : Vec3(0, -1, 0));
+    fld.value.push_back(fld.value_along(v, fld.direction.back()));
+  }
+  Polylines p = extract_zero_crossings(m, up(m), fld);
+  ASSERT_FALSE(p.points.empty());
+  for (const auto& q : p.points) EXPECT_NEAR(q.y(), -0.2, 1e-12);
+  EXPECT_NEAR(p.total_length(), 2.0, 1e-9);
+}
+
+TEST(ZeroCrossings, DropShortChains) {
+  TriMesh m = plane(60);
+  DirectionalField fld;
+  fld.direction.assign(m.n_vertices(), Vec3(1, 0, 0));
+  // A long line x = 0.3 and a small circle of radius 0.06 around (-0.5, 0).
+  fld.value_along = [&](int v, const Vec3&) {
+    const Vec3& p = m.vertices[v];
+    return (std::hypot(p.x() + 0.5, p.y()) - 0.06) * (p.x() - 0.3);
+  };
+  for (int v = 0; v < m.n_vertices(); ++v) fld.value.push_back(fld.value_along(v, fld.direction[v]));
+  Polylines p = extract_zero_crossings(m, up(m), fld);
+  EXPECT_EQ(p.chains().size(), 2u);
+  Polylines q = drop_short_chains(p, 1.0);
+  EXPECT_EQ(q.chains().size(), 1u);
+  EXPECT_NEAR(q.total_length(), 2.0, 1e-3);
+}
+
+TEST(ZeroCrossings, SizeMismatchIsAnError) {
+  TriMesh m = plane(4);
+  DirectionalField fld;
+  fld.value_along = [](int, const Vec3&) { return 0.0; };
+  EXPECT_THROW(extract_zero_crossings(m, up(m), fld), InputError);
+}
+
+TEST(LinkGaps, JoinsEndsThatFaceEachOtherOnly) {
+  // Two collinear pieces with a gap of 2 (joined), a third piece turning away at a right angle
+  // beyond the gap's end (not joined: its end does not face the others), and a short piece whose
+  // own two ends are close (not closed onto itself).
+  Polylines c;
+  auto piece = [&c](std::vector<Vec3> pts) {
+    const int base = static_cast<int>(c.points.size());
+    for (const auto& p : pts) {
+      c.points.push_back(p);
+      c.strength.push_back(1);
+    }
+    for (size_t i = 1; i < pts.size(); ++i) {
+      c.segments.push_back({base + int(i) - 1, base + int(i)});
+      c.segment_face.push_back(0);
+    }
+  };
+  piece({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}});
+  piece({{5, 0, 0}, {6, 0, 0}, {7, 0, 0}, {8, 0, 0}});
+  piece({{10, 1, 0}, {10, 2, 0}, {10, 3, 0}});
+  piece({{0, 5, 0}, {0.5, 5.5, 0}, {0, 6, 0}});
+  const size_t before = c.segments.size();
+  EXPECT_EQ(link_gaps(c, 2.5, 0.785), 1);
+  ASSERT_EQ(c.segments.size(), before + 1);
+  EXPECT_EQ(c.points[c.segments.back()[0]].x() + c.points[c.segments.back()[1]].x(), 8.0);  // 3 -> 5
+  EXPECT_EQ(c.chains().size(), 3u);
+  // Gaps wider than max_gap stay open.
+  Polylines d;
+  std::swap(c, d);
+  piece({{0, 0, 0}, {1, 0, 0}});
+  piece({{4, 0, 0}, {5, 0, 0}});
+  EXPECT_EQ(link_gaps(c, 2.5, 0.785), 0);
+}
