@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
     // Implicit: all levels in one pass.
     std::vector<double> height;
     const double t0 = rkbench::now();
-    ScaleSpaceReport rep = scale_space(m, sigmas, {}, [&](int, const TriMesh& s) { height.push_back(s.vertices[c].z()); });
+    ScaleSpaceReport rep = scale_space(m, sigmas, {}, [&](int, const Surface& s) { height.push_back(s.mesh().vertices[c].z()); });
     const double t_implicit = rkbench::now() - t0;
     std::printf("  %-28s %8.2f  ", "implicit, all five levels", t_implicit);
     for (size_t k = 0; k < sigmas.size(); ++k) std::printf("%.4f ", height[k] / truth(sigmas[k]));

@@ -35,7 +35,8 @@ int main(int argc, char** argv) {
       o.method = SolverMethod::Direct;
       const BaseNormals exact = estimate_base_normals(m, n, o);
       const std::pair<const char*, SolverMethod> solvers[] = {
-          {"auto", SolverMethod::Auto}, {"CG", SolverMethod::Iterative}, {"Cholesky", SolverMethod::Direct}};
+          {"auto", SolverMethod::Auto}, {"CG", SolverMethod::Iterative}, {"Cholesky", SolverMethod::Direct},
+          {"two-level", SolverMethod::TwoLevel}};
       for (const auto& [name, method] : solvers) {
         o.method = method;
         double best = 1e30, peak = 0;

@@ -10,8 +10,12 @@ speed:    synthetic relief tori of ~100 K, 1 M and 4 M faces; one meshlabserver 
 
 demarcating: the whole "Demarcating Curves" filter (defaults) on the 1 M and 4 M meshes, next to
           MeshLab's Pseudoinverse Quadric Fitting in the same process.
+ratios:   the three curve filters most used (curvature, Demarcating Curves, Relief Edges; the
+          parameters of examples/*.mlx) as ratios of MeshLab's Pseudoinverse Quadric Fitting run in
+          the same process, twice, on a clean 1 M-face relief torus and on the shared real scans
+          (../shared/data/meshes, converted to PLY).
 
-Usage: bench/compare_meshlab.py [accuracy] [speed] [demarcating] [--sizes 100000,1000000,4000000]
+Usage: bench/compare_meshlab.py [accuracy] [speed] [demarcating] [ratios] [--sizes 100000,1000000,4000000]
 Needs a build (scripts/build.sh). Runs its own Xvfb.
 """
 import argparse
@@ -222,6 +226,52 @@ def demarcating_speed(display, tmp, sizes):
             print(f"{faces:10d}  {label:48s} {secs:8.3f} {secs / (faces / 1e6):10.3f} {mib:8.1f}")
 
 
+def example_filter(script_name, filter_name):
+    """The <filter> block of an example script, as (name, [param lines])."""
+    import re
+    text = open(os.path.join(ROOT, "examples", script_name)).read()
+    block = re.search(r'<filter name="%s">(.*?)</filter>' % re.escape(filter_name), text, re.S).group(1)
+    return (filter_name, [line.strip() for line in block.splitlines() if line.strip().startswith("<Param")])
+
+
+def shared_scans(tmp):
+    folder = os.path.join(ROOT, "..", "shared", "data", "meshes")
+    scans = []
+    for name in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:
+        ply = os.path.join(tmp, os.path.splitext(name)[0] + ".ply")
+        subprocess.run([MAKE, "convert", os.path.join(folder, name), ply], check=True, capture_output=True)
+        scans.append((os.path.splitext(name)[0], ply))
+    return scans
+
+
+def ratios(display, tmp, repeats=2):
+    curves = [("curvature", example_filter("curvature.mlx", OURS)),
+              ("demarcating", example_filter("demarcating_shading.mlx", "Demarcating Curves")),
+              ("relief edges", example_filter("relief_edges.mlx", "Relief Edges"))]
+    mesh = os.path.join(tmp, "relief1000000.ply")
+    subprocess.run([MAKE, "relief-torus", "1000000", mesh], check=True, capture_output=True)
+    print("Each filter's time / MeshLab Pseudoinverse Quadric Fitting's, same process, same mesh "
+          f"(run {repeats} times; targets: curvature <= 0.15, demarcating <= 0.2, relief edges <= 0.6)")
+    print(f"{'mesh':24s} {'faces':>9s} {'PQF s':>7s}  " + "  ".join(f"{n:>14s}" for n, _ in curves))
+    for label, path in [("relief torus (clean)", mesh)] + shared_scans(tmp):
+        faces = count_faces(path)
+        for _ in range(repeats):
+            phases, _ = run(display, path, [meshlab(3, 0)] + [f for _, f in curves] + [meshlab(3, 0)], timed=True)
+            times = [secs for _, secs, _ in phases[1:]]
+            pqf = 0.5 * (times[0] + times[-1])
+            cells = "  ".join(f"{t / pqf:6.3f} ({t:5.2f}s)" for t in times[1:-1])
+            print(f"{label:24s} {faces:9d} {pqf:7.3f}  {cells}", flush=True)
+
+
+def count_faces(ply):
+    with open(ply, "rb") as f:
+        for line in f:
+            if line.startswith(b"element face"):
+                return int(line.split()[2])
+            if line.startswith(b"end_header"):
+                return 0
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("what", nargs="*", default=["accuracy", "speed", "demarcating"])
@@ -236,6 +286,8 @@ def main():
             print(f"CPU threads: {os.cpu_count()}")
             if "accuracy" in a.what:
                 accuracy(display, tmp)
+            if "ratios" in a.what:
+                ratios(display, tmp)
             if "speed" in a.what:
                 speed(display, tmp, [int(s) for s in a.sizes.split(",")])
             if "demarcating" in a.what:

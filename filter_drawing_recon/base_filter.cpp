@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <deque>
 
 #include "drawing_filters.h"
 #include "mesh_bridge.h"
@@ -97,169 +98,167 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Reading order of outlines: top to bottom, and left to right for outlines side by side.
-bool reads_before(const DrawingOutline& a, const DrawingOutline& b) {
-  const int overlap = std::min(a.box.y + a.box.height, b.box.y + b.box.height) - std::max(a.box.y, b.box.y);
-  if (overlap > 0.5 * std::min(a.box.height, b.box.height)) return a.box.x < b.box.x;
-  return a.box.y < b.box.y;
-}
+// What "Base from Drawing Silhouette" reads.
+struct BaseSettings {
+  QString path, views_text, library_dir, user_dir, wanted;
+  double dpi = 300, scale = 1;
+  DeformParams deform;
+  OutlineParams outline;
+  int listed = 5;
+  bool round = false;
+};
 
-void apply_base(FilterCall& call) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const QString path = call.params.getOpenFileName("drawing");
-  const double dpi = read_float(call, "dpi", "Drawing resolution (DPI)", 1, 100000);
-  const double scale = read_float(call, "scale", "Drawing scale (object : drawing)", 1e-6, 1e6);
-  const double alpha = read_float(call, "alpha", "Shape weight (alpha)", 1e-4, 1e4);
-  const int passes = read_int(call, "passes", "Passes", 1, 20);
-  const double gap = read_float(call, "gap", "Outline gap (px, 0: auto)", 0, 10000);
-  const int listed = read_int(call, "matches", "Matches listed", 1, 100);
-  const bool round = read_bool(call, "round", "One view: a round object");
-  QString library_dir = call.params.getString("library").trimmed();
-  if (library_dir.isEmpty()) {
-    library_dir = shipped_library();
-    if (library_dir.isEmpty())
+BaseSettings read_base_settings(FilterCall& call) {
+  BaseSettings s;
+  s.path = call.params.getOpenFileName("drawing");
+  s.dpi = read_float(call, "dpi", "Drawing resolution (DPI)", 1, 100000);
+  s.scale = read_float(call, "scale", "Drawing scale (object : drawing)", 1e-6, 1e6);
+  s.deform.alpha = read_float(call, "alpha", "Shape weight (alpha)", 1e-4, 1e4);
+  s.deform.passes = read_int(call, "passes", "Passes", 1, 20);
+  s.deform.progress = call.progress;
+  s.outline.gap = read_float(call, "gap", "Outline gap (px, 0: auto)", 0, 10000);
+  s.listed = read_int(call, "matches", "Matches listed", 1, 100);
+  s.round = read_bool(call, "round", "One view: a round object");
+  s.library_dir = call.params.getString("library").trimmed();
+  if (s.library_dir.isEmpty()) {
+    s.library_dir = shipped_library();
+    if (s.library_dir.isEmpty())
       throw InputError("ReliefKit's library of base models is not beside this MeshLab (share/reliefkit/bases next to its "
                        "bin folder): give its folder in \"Model library folder\" (build/bases in a build tree).");
-  } else if (library_dir.compare("none", Qt::CaseInsensitive) == 0) {
-    library_dir.clear();
+  } else if (s.library_dir.compare("none", Qt::CaseInsensitive) == 0) {
+    s.library_dir.clear();
   }
-  const QString user_dir = call.params.getString("user_models").trimmed();
-  const QString wanted = call.params.getString("model").trimmed();
-  if (path.trimmed().isEmpty()) throw InputError("No drawing image was given: choose the image file in \"Drawing image\".");
-  const auto views = parse_drawing_views(call.params.getString("views").toStdString());
-  if (call.progress) call.progress(2, "Reading the drawing");
+  s.user_dir = call.params.getString("user_models").trimmed();
+  s.wanted = call.params.getString("model").trimmed();
+  s.views_text = call.params.getString("views");
+  if (s.path.trimmed().isEmpty()) throw InputError("No drawing image was given: choose the image file in \"Drawing image\".");
+  return s;
+}
 
-  // ---- outlines of the views, in millimetres (view coordinates: x right, y up) ----
-  OutlineParams op;
-  op.gap = gap;
+// The drawing's images, each read once, with their pixel size (mm).
+class DrawingImages {
+ public:
+  explicit DrawingImages(const BaseSettings& s) : s_(s), dir_(QFileInfo(s.path).absoluteDir()) {}
   struct Image { QString path; cv::Mat grey; double pixel_mm; };
-  std::vector<Image> images;
-  auto image_of = [&](const QString& p) -> const Image& {
-    for (const auto& im : images)
+  // The image of a view: its own file (relative to the drawing's folder) or the drawing's.
+  const Image& of(const DrawingView& v) {
+    QString p = s_.path;
+    if (!v.image.empty()) {
+      p = QString::fromStdString(v.image);
+      if (QFileInfo(p).isRelative()) p = dir_.filePath(p);
+    }
+    for (const auto& im : images_)
       if (im.path == p) return im;
     double reduction = 1;
     const cv::Mat img = read_drawing_image(p.toStdString(), &reduction);
-    images.push_back({p, drawing_grey(img), 25.4 / dpi * scale / reduction});
-    return images.back();
-  };
-  image_of(path);
-  const QDir drawing_dir = QFileInfo(path).absoluteDir();
-  std::vector<ViewOutline> outlines(views.size());
-  std::vector<DrawingOutline> found(views.size());
-  std::vector<double> pixel(views.size());
-  std::vector<cv::Rect> frame(views.size());  // the image (or region) each view's outline was found in
-  // Views without a region that share the drawing's image take its largest outlines in reading order.
+    images_.push_back({p, drawing_grey(img), 25.4 / s_.dpi * s_.scale / reduction});
+    return images_.back();
+  }
+
+ private:
+  const BaseSettings& s_;
+  QDir dir_;
+  std::deque<Image> images_;  // references stay valid as images are added
+};
+
+// One view's outline as found in its image.
+struct FoundView {
+  DrawingOutline outline;
+  double pixel_mm = 1;
+  cv::Rect frame;  // the image (or region) it was found in
+};
+
+// Views without a region that share the drawing's image take its largest outlines in reading
+// order; the others their own region's or image's largest.
+std::vector<FoundView> find_view_outlines(const BaseSettings& s, const std::vector<DrawingView>& views) {
+  DrawingImages images(s);
+  images.of(DrawingView{});  // the drawing is read (and must be readable) whichever views use it
+  std::vector<FoundView> found(views.size());
   std::vector<size_t> shared;
   for (size_t i = 0; i < views.size(); ++i)
     if (views[i].image.empty() && views[i].region.area() == 0) shared.push_back(i);
   if (!shared.empty()) {
-    const Image& im = image_of(path);
-    auto all = drawing_outlines(im.grey, cv::Rect(), int(shared.size()), op);
+    const auto& im = images.of(DrawingView{});
+    auto all = drawing_outlines(im.grey, cv::Rect(), int(shared.size()), s.outline);
     if (all.size() < shared.size())
-      throw InputError("The views \"" + call.params.getString("views").toStdString() + "\" need " +
-                       std::to_string(shared.size()) + " separate outlines, but the drawing has " +
-                       std::to_string(all.size()) + ": give each view's region (front = x y w h; ...).");
-    std::sort(all.begin(), all.end(), reads_before);
-    for (size_t k = 0; k < shared.size(); ++k) {
-      found[shared[k]] = all[k];
-      pixel[shared[k]] = im.pixel_mm;
-      frame[shared[k]] = cv::Rect(0, 0, im.grey.cols, im.grey.rows);
-    }
+      throw InputError("The views \"" + s.views_text.toStdString() + "\" need " + std::to_string(shared.size()) +
+                       " separate outlines, but the drawing has " + std::to_string(all.size()) +
+                       ": give each view's region (front = x y w h; ...).");
+    sort_reading_order(all);
+    for (size_t k = 0; k < shared.size(); ++k) found[shared[k]] = {all[k], im.pixel_mm, cv::Rect(0, 0, im.grey.cols, im.grey.rows)};
   }
   for (size_t i = 0; i < views.size(); ++i) {
     if (views[i].image.empty() && views[i].region.area() == 0) continue;
-    QString p = path;
-    if (!views[i].image.empty()) {
-      p = QString::fromStdString(views[i].image);
-      if (QFileInfo(p).isRelative()) p = drawing_dir.filePath(p);
-    }
-    const Image& im = image_of(p);
-    found[i] = drawing_outlines(im.grey, views[i].region, 1, op).front();
-    pixel[i] = im.pixel_mm;
+    const auto& im = images.of(views[i]);
     const cv::Rect whole(0, 0, im.grey.cols, im.grey.rows);
-    frame[i] = views[i].region.area() > 0 ? (views[i].region & whole) : whole;
+    found[i] = {drawing_outlines(im.grey, views[i].region, 1, s.outline).front(), im.pixel_mm,
+                views[i].region.area() > 0 ? (views[i].region & whole) : whole};
   }
-  std::vector<ViewFeature> features;
-  for (size_t i = 0; i < views.size(); ++i) {
-    outlines[i].kind = views[i].kind;
-    for (const auto& q : found[i].outline) outlines[i].outline.push_back(Vec2(q.x() * pixel[i], -q.y() * pixel[i]));
-    features.push_back({views[i].kind, circle_feature(outlines[i].outline)});
-    call.log(QString("%1 view: outline of %2 x %3 px at (%4, %5), %6 mm x %7 mm; gaps up to %8 px bridged, %9 other marks "
-                     "left out.")
-                 .arg(QString(view_name(views[i].kind)).replace(0, 1, QString(view_name(views[i].kind)).at(0).toUpper()))
-                 .arg(found[i].box.width)
-                 .arg(found[i].box.height)
-                 .arg(found[i].box.x)
-                 .arg(found[i].box.y)
-                 .arg(found[i].box.width * pixel[i], 0, 'f', 1)
-                 .arg(found[i].box.height * pixel[i], 0, 'f', 1)
-                 .arg(found[i].gap, 0, 'f', 0)
-                 .arg(found[i].dropped));
-    // Within 1 % of the image's size (at least 3 px) of its border: the outline may be cut there.
-    const cv::Rect& b = found[i].box;
-    const int near = std::max(3, int(0.01 * std::max(frame[i].width, frame[i].height)));
-    if (b.x - frame[i].x <= near || b.y - frame[i].y <= near || frame[i].x + frame[i].width - (b.x + b.width) <= near ||
-        frame[i].y + frame[i].height - (b.y + b.height) <= near)
-      call.log(QString("Warning: the %1 view's outline touches the border of its image: the drawing may be cut there, "
-                       "or its lines run into the border (check the outline; give the view's region).")
-                   .arg(view_name(views[i].kind)));
-  }
+  return found;
+}
 
-  // ---- the library and the search ----
-  if (call.progress) call.progress(10, "Reading the model library");
+void log_view(FilterCall& call, ViewKind kind, const FoundView& f) {
+  QString name = view_name(kind);
+  name[0] = name[0].toUpper();
+  const DrawingOutline& o = f.outline;
+  call.log(QString("%1 view: outline of %2 x %3 px at (%4, %5), %6 mm x %7 mm; gaps up to %8 px bridged, %9 other marks "
+                   "left out.")
+               .arg(name)
+               .arg(o.box.width)
+               .arg(o.box.height)
+               .arg(o.box.x)
+               .arg(o.box.y)
+               .arg(o.box.width * f.pixel_mm, 0, 'f', 1)
+               .arg(o.box.height * f.pixel_mm, 0, 'f', 1)
+               .arg(o.gap, 0, 'f', 0)
+               .arg(o.dropped));
+  if (touches_frame(o.box, f.frame))
+    call.log(QString("Warning: the %1 view's outline touches the border of its image: the drawing may be cut there, "
+                     "or its lines run into the border (check the outline; give the view's region).")
+                 .arg(view_name(kind)));
+}
+
+BaseLibrary read_library(FilterCall& call, const BaseSettings& s) {
   BaseLibrary library;
-  if (!library_dir.isEmpty()) add_library_folder(library, library_dir.toStdString());
-  if (!user_dir.isEmpty()) add_library_folder(library, user_dir.toStdString());
+  if (!s.library_dir.isEmpty()) add_library_folder(library, s.library_dir.toStdString());
+  if (!s.user_dir.isEmpty()) add_library_folder(library, s.user_dir.toStdString());
   for (const auto& n : library.notes) call.log(QString::fromStdString(n));
-  if (!library_dir.isEmpty()) call.log("Model library: " + library_dir + (user_dir.isEmpty() ? QString() : " and " + user_dir));
+  if (!s.library_dir.isEmpty())
+    call.log("Model library: " + s.library_dir + (s.user_dir.isEmpty() ? QString() : " and " + s.user_dir));
   if (library.models.empty())
     throw InputError("The model library is empty: \"Model library folder\"" +
-                     (library_dir.isEmpty() ? std::string(" is \"none\"") : " (" + library_dir.toStdString() + ")") +
+                     (s.library_dir.isEmpty() ? std::string(" is \"none\"") : " (" + s.library_dir.toStdString() + ")") +
                      " and \"Your models folder\"" +
-                     (user_dir.isEmpty() ? std::string(" is not set") : " (" + user_dir.toStdString() + ")") +
+                     (s.user_dir.isEmpty() ? std::string(" is not set") : " (" + s.user_dir.toStdString() + ")") +
                      " hold no readable PLY, OBJ, STL or OFF model.");
+  return library;
+}
+
+// The best match (or the model the user named), with the best matches logged.
+BaseMatch choose_model(FilterCall& call, const BaseSettings& s, const BaseLibrary& library,
+                       const std::vector<ViewFeature>& features) {
   const auto t_search = std::chrono::steady_clock::now();
   const auto ranked = retrieve_bases(library, features, int(library.models.size()));
   const double search_s = seconds_since(t_search);
   QString list;
-  for (int k = 0; k < std::min<int>(listed, int(ranked.size())); ++k)
-    list += QString("%1%2. %3 (%4) %5").arg(k ? "; " : "").arg(k + 1)
-                .arg(QString::fromStdString(library.models[size_t(ranked[size_t(k)].model)].name))
-                .arg(QString::fromStdString(library.models[size_t(ranked[size_t(k)].model)].kind))
+  for (int k = 0; k < std::min<int>(s.listed, int(ranked.size())); ++k) {
+    const LibraryModel& m = library.models[size_t(ranked[size_t(k)].model)];
+    list += QString("%1%2. %3 (%4) %5")
+                .arg(k ? "; " : "")
+                .arg(k + 1)
+                .arg(QString::fromStdString(m.name))
+                .arg(QString::fromStdString(m.kind))
                 .arg(ranked[size_t(k)].score, 0, 'f', 4);
+  }
   call.log(QString("Best matches of %1 models (feature distance, 0 = same silhouette; %2 s): %3.")
                .arg(library.models.size())
                .arg(search_s, 0, 'f', 3)
                .arg(list));
-  BaseMatch chosen = ranked.front();
-  if (!wanted.isEmpty()) {
-    auto it = std::find_if(ranked.begin(), ranked.end(), [&](const BaseMatch& m) {
-      return QString::fromStdString(library.models[size_t(m.model)].name).compare(wanted, Qt::CaseInsensitive) == 0;
-    });
-    if (it == ranked.end())
-      throw InputError("\"Use model\": no model named \"" + wanted.toStdString() + "\" in the library (names as the log lists them, e.g. " +
-                       library.models[size_t(ranked.front().model)].name + ").");
-    chosen = *it;
-  }
-  const LibraryModel& lm = library.models[size_t(chosen.model)];
+  return s.wanted.isEmpty() ? ranked.front() : named_match(library, ranked, s.wanted.toStdString());
+}
 
-  // ---- the model, placed on the outlines and deformed ----
-  if (call.progress) call.progress(20, "Placing the model");
-  std::vector<ViewOutline> fit = outlines;
-  if (round && views.size() == 1 && views[0].kind != ViewKind::Top) {
-    fit.push_back({views[0].kind == ViewKind::Front ? ViewKind::Side : ViewKind::Front, outlines[0].outline});
-    call.log(QString("One %1 view: the object is taken as round (the same outline as its %2 view; \"One view: a round "
-                     "object\" off keeps the model's depth).")
-                 .arg(view_name(views[0].kind))
-                 .arg(view_name(fit.back().kind)));
-  }
-  TriMesh model = place_on_outlines(oriented(normalize_to_principal_axes(read_model_file(lm.path)), chosen.orientation), fit);
-  DeformParams dp;
-  dp.alpha = alpha;
-  dp.passes = passes;
-  dp.progress = call.progress;
-  DeformReport rep;
-  const TriMesh base = deform_to_outlines(model, fit, dp, &rep);
+void log_base(FilterCall& call, const LibraryModel& lm, const BaseMatch& chosen, size_t views, const DeformReport& rep,
+              const TriMesh& base, double seconds) {
   constexpr double kPoorFit = 0.05;  // the tests' worst deliberate case (a cylinder made a goblet) stays under it
   if (rep.hausdorff_after > kPoorFit)
     call.log(QString("Warning: the base stays %1 % of the outline's size off the drawing (more than %2 %): the model "
@@ -267,20 +266,13 @@ void apply_base(FilterCall& call) {
                      "outline (a drawing cut by the image's border, text run into it).")
                  .arg(100 * rep.hausdorff_after, 0, 'f', 1)
                  .arg(100 * kPoorFit, 0, 'f', 0));
-  std::vector<double> moved(size_t(base.n_vertices()));
-  for (int i = 0; i < base.n_vertices(); ++i) moved[size_t(i)] = (base.vertices[size_t(i)] - model.vertices[size_t(i)]).norm();
-
-  const QString name = QString::fromStdString(lm.name);
-  add_mesh_layer(call.doc, name + QString::fromUtf8(" – retrieved"), model, std::vector<double>(size_t(model.n_vertices()), 0), {},
-                 false);
-  add_mesh_layer(call.doc, QFileInfo(path).completeBaseName() + QString::fromUtf8(" – base (") + name + ")", base, moved, {}, true);
   call.log(QString("Base from Drawing Silhouette: %1 (%2, score %3) deformed to %4 view(s): %5 silhouette vertices pulled, "
                    "silhouette off the outline by %6 % of its size before, %7 % after (Hausdorff); Laplacian coordinates "
                    "changed by %8 %; %9 vertices, %10 faces; %11; %12 s.")
-               .arg(name)
+               .arg(QString::fromStdString(lm.name))
                .arg(QString::fromStdString(lm.kind))
                .arg(chosen.score, 0, 'f', 4)
-               .arg(fit.size())
+               .arg(views)
                .arg(rep.silhouette_vertices)
                .arg(100 * rep.hausdorff_before, 0, 'f', 2)
                .arg(100 * rep.hausdorff_after, 0, 'f', 2)
@@ -288,7 +280,44 @@ void apply_base(FilterCall& call) {
                .arg(thousands(base.n_vertices()))
                .arg(thousands(base.n_faces()))
                .arg(QString::fromStdString(rep.solver))
-               .arg(seconds_since(t0), 0, 'f', 2));
+               .arg(seconds, 0, 'f', 2));
+}
+
+void apply_base(FilterCall& call) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const BaseSettings s = read_base_settings(call);
+  const auto views = parse_drawing_views(s.views_text.toStdString());
+  if (call.progress) call.progress(2, "Reading the drawing");
+  const std::vector<FoundView> found = find_view_outlines(s, views);
+  std::vector<ViewOutline> outlines;
+  std::vector<ViewFeature> features;
+  for (size_t i = 0; i < views.size(); ++i) {
+    outlines.push_back({views[i].kind, outline_in_units(found[i].outline.outline, found[i].pixel_mm)});
+    features.push_back({views[i].kind, circle_feature(outlines.back().outline)});
+    log_view(call, views[i].kind, found[i]);
+  }
+  if (call.progress) call.progress(10, "Reading the model library");
+  const BaseLibrary library = read_library(call, s);
+  const BaseMatch chosen = choose_model(call, s, library, features);
+  const LibraryModel& lm = library.models[size_t(chosen.model)];
+  if (call.progress) call.progress(20, "Placing the model");
+  const std::vector<ViewOutline> fit = s.round ? round_object_views(outlines) : outlines;
+  if (fit.size() > outlines.size())
+    call.log(QString("One %1 view: the object is taken as round (the same outline as its %2 view; \"One view: a round "
+                     "object\" off keeps the model's depth).")
+                 .arg(view_name(views[0].kind))
+                 .arg(view_name(fit.back().kind)));
+  const TriMesh model = place_on_outlines(oriented(normalize_to_principal_axes(read_model_file(lm.path)), chosen.orientation), fit);
+  DeformReport rep;
+  const TriMesh base = deform_to_outlines(model, fit, s.deform, &rep);
+  std::vector<double> moved(size_t(base.n_vertices()));
+  for (int i = 0; i < base.n_vertices(); ++i) moved[size_t(i)] = (base.vertices[size_t(i)] - model.vertices[size_t(i)]).norm();
+  const QString name = QString::fromStdString(lm.name);
+  add_mesh_layer(call.doc, name + QString::fromUtf8(" – retrieved"), model, std::vector<double>(size_t(model.n_vertices()), 0), {},
+                 false);
+  add_mesh_layer(call.doc, QFileInfo(s.path).completeBaseName() + QString::fromUtf8(" – base (") + name + ")", base, moved, {},
+                 true);
+  log_base(call, lm, chosen, fit.size(), rep, base, seconds_since(t0));
 }
 
 }  // namespace

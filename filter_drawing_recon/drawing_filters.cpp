@@ -5,7 +5,6 @@
 #include <QFileInfo>
 #include <chrono>
 #include <cmath>
-#include <unordered_map>
 
 #include "mesh_bridge.h"
 #include "params.h"
@@ -119,20 +118,6 @@ Drawing read_drawing(FilterCall& call) {
   return d;
 }
 
-// The curves as an edge layer in the plane of the drawing (or on `surface`), quality = curve id.
-Polylines curves_in_mesh_units(const DrawingCurves& dc, double pixel_mm) {
-  Polylines pl;
-  for (size_t k = 0; k < dc.curves.size(); ++k) {
-    const int first = int(pl.points.size());
-    for (const auto& q : dc.curves[k]) {
-      pl.points.push_back(Vec3(q.x() * pixel_mm, -q.y() * pixel_mm, 0));
-      pl.strength.push_back(double(k));
-    }
-    for (int i = first; i + 1 < int(pl.points.size()); ++i) pl.segments.push_back({i, i + 1});
-  }
-  return pl;
-}
-
 QString image_label(const Drawing& d, const char* what) { return QFileInfo(d.path).completeBaseName() + QString::fromUtf8(" – ") + what; }
 
 // ---- Line Drawing to Curves ----
@@ -150,11 +135,11 @@ void apply_curves(FilterCall& call) {
   const Drawing d = read_drawing(call);
   const double margins = read_float(call, "margins", "Margins (px, 0: none)", 0, 1000);
   const QString label = image_label(d, "curves");
-  add_curve_layer(call.doc, label, curves_in_mesh_units(d.curves, d.pixel_mm), vcg::Color4b(20, 20, 20, 255));
+  add_curve_layer(call.doc, label, drawing_polylines(d.curves, d.pixel_mm), vcg::Color4b(20, 20, 20, 255));
   if (margins > 0) {
     DrawingCurves m;
     m.curves = margin_lines(d.curves, margins);
-    add_curve_layer(call.doc, image_label(d, "margins"), curves_in_mesh_units(m, d.pixel_mm), vcg::Color4b(40, 90, 220, 255));
+    add_curve_layer(call.doc, image_label(d, "margins"), drawing_polylines(m, d.pixel_mm), vcg::Color4b(40, 90, 220, 255));
   }
   call.log(QString("Line Drawing to Curves: \"%1\" %2 x %3 px; %4 curves (%5 px of lines, %6 junctions), %7 short strokes "
                    "dropped; layer \"%8\", pixel %9 mm; %10 s.")
@@ -203,176 +188,155 @@ void relief_parameters(MeshModel&, RichParameterList& par) {
 
 constexpr long kMaxAutoVertices = 4000000;
 
+// What "Relief from Line Drawing" reads besides the drawing.
+struct ReliefSettings {
+  QString interpretation;  // the user's file ("" automatic)
+  int ground = 0;
+  int base = kPlane;
+  DrawingReliefParams relief;
+  double step_percent = 0.5;
+  double cell = 0;  // px; 0 automatic
+};
+
+ReliefSettings read_relief_settings(FilterCall& call) {
+  ReliefSettings s;
+  s.interpretation = call.params.getOpenFileName("interpretation").trimmed();
+  s.ground = read_enum(call, "ground", "Ground level", kGrounds.size());
+  s.base = read_enum(call, "base", "Base", kBases.size());
+  s.relief.margin = read_float(call, "margin", "Step width (px)", 0.5, 1000);
+  s.step_percent = read_float(call, "step_height", "Step height (% of the drawing's width)", 1e-6, 1000);
+  s.cell = read_float(call, "cell", "Base resolution (px)", 0, 1000);
+  return s;
+}
+
+// The interpretation parameters: automatic, with the user's overrides when a file is given.
+InterpretationParams interpretation_params(const ReliefSettings& s, const DrawingCurves& curves) {
+  InterpretationParams ip;
+  ip.margin = std::max(3.0, 0.75 * s.relief.margin);
+  ip.paper_is_base = s.ground == 0;
+  if (!s.interpretation.isEmpty()) {
+    QFile f(s.interpretation);
+    if (!f.open(QIODevice::ReadOnly))
+      throw InputError(("The interpretation file \"" + s.interpretation + "\" does not exist or cannot be read.").toStdString());
+    ip.overrides = overrides_from_json(f.readAll().toStdString(), curves);
+  }
+  return ip;
+}
+
+// The relief with the layers shown beside it.
+struct ReliefLayers {
+  TriMesh surface;
+  DrawingRelief relief;
+  std::vector<double> level;  // per vertex: its region's level (-1 on a curve, uncovered)
+  Polylines curves;           // the drawing's curves on the relief
+  int base_vertices = 0;
+  double spacing_px = 0;      // the base's vertex spacing in the drawing
+};
+
+// On the current layer: the drawing projected onto it, the relief along its normals.
+ReliefLayers relief_on_layer(FilterCall& call, const Drawing& d, const DrawingInterpretation& di, ReliefSettings& s,
+                             const cv::Rect& area) {
+  if (call.current == nullptr)
+    throw InputError("Base \"Current layer\" needs a mesh layer: open the base mesh first, or choose the Plane or "
+                     "Cylinder base.");
+  const vcg::Point3f vd = call.params.getPoint3m("view");
+  const Vec3 view(vd[0], vd[1], vd[2]);
+  if (!std::isfinite(view.norm())) throw InputError("View direction: the numbers must be finite (0 0 0 for automatic).");
+  View bv = view_of(call.mesh(), call.log);
+  const Surface base = surface_of(bv);
+  const DrawingProjection proj = project_drawing(base, area, view);
+  s.relief.pixel_size = proj.pixel_size;
+  s.relief.step_height = s.step_percent / 100 * area.width * proj.pixel_size;
+  if (proj.edge_px > s.relief.margin / 2)
+    call.log(QString("The base's edges are %1 px of the drawing, but steps %2 px wide need edges of at most %3 px: the "
+                     "relief will be coarse. Subdivide the base first (Filters > Remeshing, Simplification and "
+                     "Reconstruction > Subdivision Surfaces: Midpoint) or raise Step width.")
+                 .arg(proj.edge_px, 0, 'g', 3)
+                 .arg(s.relief.margin, 0, 'g', 3)
+                 .arg(s.relief.margin / 2, 0, 'g', 3));
+  if (call.progress) call.progress(40, "Reconstructing the relief");
+  ReliefLayers out;
+  out.relief = reconstruct_drawing_relief(base, d.curves, di, s.relief, &proj.pixel);
+  out.surface = displace_along_normals(base, out.relief.height);
+  out.level = region_levels(di, proj.pixel);
+  out.curves = curves_on_projected_relief(d.curves, proj, out.surface);
+  out.base_vertices = base.n_vertices();
+  out.spacing_px = proj.edge_px;
+  call.log(QString("Drawing projected along (%1, %2, %3) onto %4 of the layer's %5 vertices, %6 mesh units per pixel.")
+               .arg(proj.view.x(), 0, 'f', 3)
+               .arg(proj.view.y(), 0, 'f', 3)
+               .arg(proj.view.z(), 0, 'f', 3)
+               .arg(thousands(proj.covered))
+               .arg(thousands(base.n_vertices()))
+               .arg(proj.pixel_size, 0, 'g', 4));
+  return out;
+}
+
+// The base's vertex spacing: the user's, or drawing_cell's unless the grid would be too large.
+double grid_cell(FilterCall& call, const DrawingInterpretation& di, const ReliefSettings& s, const cv::Rect& area) {
+  if (s.cell > 0) return s.cell;
+  const double cell = drawing_cell(di, s.relief.margin);
+  const double verts = (area.width / cell + 1) * (area.height / cell + 1);
+  if (verts <= kMaxAutoVertices) return cell;
+  const double coarser = std::sqrt(double(area.width) * area.height / kMaxAutoVertices);
+  call.log(QString("Base resolution: %1 px per vertex would make %2 vertices; %3 px taken (steps less finely "
+                   "resolved; set Base resolution to override).")
+               .arg(cell, 0, 'g', 3)
+               .arg(thousands((long long)verts))
+               .arg(coarser, 0, 'g', 3));
+  return coarser;
+}
+
+// On a plane or a cylinder: a grid over the drawn part of the image.
+ReliefLayers relief_on_grid(FilterCall& call, const Drawing& d, const DrawingInterpretation& di, ReliefSettings& s,
+                            const cv::Rect& area) {
+  const double cell = grid_cell(call, di, s, area);
+  s.relief.pixel_size = d.pixel_mm;
+  s.relief.step_height = s.step_percent / 100 * area.width * d.pixel_mm;
+  if (call.progress) call.progress(40, "Reconstructing the relief");
+  const TriMesh grid = drawing_grid(area.width, area.height, cell, d.pixel_mm, area.x, area.y);
+  const DrawingBase shape = s.base == kCylinder ? DrawingBase::Cylinder : DrawingBase::Plane;
+  const double circumference = d.image.cols * d.pixel_mm, front = (area.x + 0.5 * area.width) * d.pixel_mm;
+  ReliefLayers out;
+  out.relief = reconstruct_drawing_relief(grid, d.curves, di, s.relief);
+  out.surface = relief_surface(grid, out.relief.height, shape, circumference, front);
+  std::vector<Vec2> pixel(size_t(grid.n_vertices()));
+  for (int v = 0; v < grid.n_vertices(); ++v)
+    pixel[size_t(v)] = Vec2(grid.vertices[size_t(v)].x() / d.pixel_mm, -grid.vertices[size_t(v)].y() / d.pixel_mm);
+  out.level = region_levels(di, pixel);
+  out.curves = curves_on_grid_relief(d.curves, d.pixel_mm, area, cell, out.relief.height, shape, circumference, front);
+  out.base_vertices = grid.n_vertices();
+  out.spacing_px = cell;
+  return out;
+}
+
+// The interpretation file beside the image (only when none was given: the user's file stays as
+// written). Returns its path, "" when it was not written.
+QString write_interpretation_file(FilterCall& call, const Drawing& d, const DrawingInterpretation& di) {
+  const QFileInfo fi(d.path);
+  const QString path = fi.absoluteDir().filePath(fi.completeBaseName() + ".interpretation.json");
+  QFile f(path);
+  const std::string text = interpretation_to_json(fi.fileName().toStdString(), d.curves, d.detection, di);
+  if (f.open(QIODevice::WriteOnly | QIODevice::Truncate) && f.write(text.data(), qint64(text.size())) == qint64(text.size()))
+    return path;
+  call.log("The interpretation file could not be written beside the drawing (" + path + "): the folder is not writable.");
+  return QString();
+}
+
 void apply_relief(FilterCall& call) {
   const auto t0 = std::chrono::steady_clock::now();
-  Drawing d = read_drawing(call);
-  const QString interp_path = call.params.getOpenFileName("interpretation").trimmed();
-  const int ground = read_enum(call, "ground", "Ground level", kGrounds.size());
-  const int base = read_enum(call, "base", "Base", kBases.size());
-  DrawingReliefParams rp;
-  rp.margin = read_float(call, "margin", "Step width (px)", 0.5, 1000);
-  const double step_pct = read_float(call, "step_height", "Step height (% of the drawing's width)", 1e-6, 1000);
-  double cell = read_float(call, "cell", "Base resolution (px)", 0, 1000);
-
-  // Interpretation: automatic, with the user's overrides when a file is given.
-  InterpretationParams ip;
-  ip.margin = std::max(3.0, 0.75 * rp.margin);
-  ip.paper_is_base = ground == 0;
-  if (!interp_path.isEmpty()) {
-    QFile f(interp_path);
-    if (!f.open(QIODevice::ReadOnly))
-      throw InputError(("The interpretation file \"" + interp_path + "\" does not exist or cannot be read.").toStdString());
-    const QByteArray text = f.readAll();
-    ip.overrides = overrides_from_json(text.toStdString(), d.curves);
-  }
+  const Drawing d = read_drawing(call);
+  ReliefSettings s = read_relief_settings(call);
+  const InterpretationParams ip = interpretation_params(s, d.curves);
   if (call.progress) call.progress(30, "Interpreting the drawing");
   const DrawingInterpretation di = interpret_drawing(d.curves, ip);
-  int top = 0;
-  for (int h : di.region_height) top = std::max(top, h);
-
-  // The base: a grid over the drawn part of the image (plane, cylinder), or the current layer.
-  const cv::Rect area = drawing_extent(d.curves, 4 * rp.margin + 4);
-  const int base_choice = int(base);
-  TriMesh grid, surface;
-  DrawingRelief r;
-  std::vector<double> level;
-  DrawingProjection proj;
-  // The level of the region at a drawing pixel (-1 on a curve or outside the image).
-  auto level_at = [&](const Vec2& q) {
-    const int x = int(std::lround(q.x())), y = int(std::lround(q.y()));
-    const int reg = (x >= 0 && y >= 0 && x < di.regions.cols && y < di.regions.rows) ? di.regions.at<int>(y, x) : -1;
-    return reg >= 0 ? double(di.region_height[size_t(reg)]) : -1.0;
-  };
-  const double circumference = d.image.cols * d.pixel_mm, front = (area.x + 0.5 * area.width) * d.pixel_mm;
-  if (base_choice == kCurrent) {
-    if (call.current == nullptr)
-      throw InputError("Base \"Current layer\" needs a mesh layer: open the base mesh first, or choose the Plane or "
-                       "Cylinder base.");
-    const vcg::Point3f vd = call.params.getPoint3m("view");
-    const Vec3 view(vd[0], vd[1], vd[2]);
-    if (!std::isfinite(view.norm())) throw InputError("View direction: the numbers must be finite (0 0 0 for automatic).");
-    View bv = view_of(call.mesh(), call.log);
-    proj = project_drawing(bv.mesh, area, view);
-    rp.pixel_size = proj.pixel_size;
-    rp.step_height = step_pct / 100 * area.width * proj.pixel_size;
-    if (proj.edge_px > rp.margin / 2)
-      call.log(QString("The base's edges are %1 px of the drawing, but steps %2 px wide need edges of at most %3 px: the "
-                       "relief will be coarse. Subdivide the base first (Filters > Remeshing, Simplification and "
-                       "Reconstruction > Subdivision Surfaces: Midpoint) or raise Step width.")
-                   .arg(proj.edge_px, 0, 'g', 3)
-                   .arg(rp.margin, 0, 'g', 3)
-                   .arg(rp.margin / 2, 0, 'g', 3));
-    if (call.progress) call.progress(40, "Reconstructing the relief");
-    r = reconstruct_drawing_relief(bv.mesh, d.curves, di, rp, &proj.pixel);
-    surface = displace_along_normals(bv.mesh, r.height);
-    grid = bv.mesh;
-    level.assign(size_t(grid.n_vertices()), -1);
-    for (int v = 0; v < grid.n_vertices(); ++v)
-      if (std::isfinite(proj.pixel[size_t(v)].x())) level[size_t(v)] = level_at(proj.pixel[size_t(v)]);
-    call.log(QString("Drawing projected along (%1, %2, %3) onto %4 of the layer's %5 vertices, %6 mesh units per pixel.")
-                 .arg(proj.view.x(), 0, 'f', 3)
-                 .arg(proj.view.y(), 0, 'f', 3)
-                 .arg(proj.view.z(), 0, 'f', 3)
-                 .arg(thousands(proj.covered))
-                 .arg(thousands(grid.n_vertices()))
-                 .arg(proj.pixel_size, 0, 'g', 4));
-  } else {
-    if (cell <= 0) {
-      cell = drawing_cell(di, rp.margin);
-      const double verts = (area.width / cell + 1) * (area.height / cell + 1);
-      if (verts > kMaxAutoVertices) {
-        const double c2 = std::sqrt(double(area.width) * area.height / kMaxAutoVertices);
-        call.log(QString("Base resolution: %1 px per vertex would make %2 vertices; %3 px taken (steps less finely "
-                         "resolved; set Base resolution to override).")
-                     .arg(cell, 0, 'g', 3)
-                     .arg(thousands((long long)verts))
-                     .arg(c2, 0, 'g', 3));
-        cell = c2;
-      }
-    }
-    rp.pixel_size = d.pixel_mm;
-    rp.step_height = step_pct / 100 * area.width * d.pixel_mm;
-    if (call.progress) call.progress(40, "Reconstructing the relief");
-    grid = drawing_grid(area.width, area.height, cell, d.pixel_mm, area.x, area.y);
-    r = reconstruct_drawing_relief(grid, d.curves, di, rp);
-    surface = relief_surface(grid, r.height, base_choice == kCylinder ? DrawingBase::Cylinder : DrawingBase::Plane, circumference, front);
-    level.assign(size_t(grid.n_vertices()), 0);
-    for (int v = 0; v < grid.n_vertices(); ++v)
-      level[size_t(v)] = level_at(Vec2(grid.vertices[v].x() / d.pixel_mm, -grid.vertices[v].y() / d.pixel_mm));
-  }
-
-  // The interpretation file beside the image (only when none was given: the user's file stays as written).
-  QString written;
-  if (interp_path.isEmpty()) {
-    const QFileInfo fi(d.path);
-    written = fi.absoluteDir().filePath(fi.completeBaseName() + ".interpretation.json");
-    QFile f(written);
-    const std::string text = interpretation_to_json(fi.fileName().toStdString(), d.curves, d.detection, di);
-    if (f.open(QIODevice::WriteOnly | QIODevice::Truncate) && f.write(text.data(), qint64(text.size())) == qint64(text.size())) {
-      f.close();
-    } else {
-      call.log("The interpretation file could not be written beside the drawing (" + written + "): the folder is not writable.");
-      written.clear();
-    }
-  }
-
+  const cv::Rect area = drawing_extent(d.curves, 4 * s.relief.margin + 4);
+  const ReliefLayers r = s.base == kCurrent ? relief_on_layer(call, d, di, s, area) : relief_on_grid(call, d, di, s, area);
+  const QString written = s.interpretation.isEmpty() ? write_interpretation_file(call, d, di) : QString();
   if (call.progress) call.progress(95, "Adding the layers");
-  // The curves on the relief.
-  Polylines pl = curves_in_mesh_units(d.curves, d.pixel_mm);
-  if (base_choice == kCurrent) {
-    // Each curve point at the covered vertex nearest to it in the drawing, moved within the image
-    // plane by the remaining offset (a grid of the covered vertices' pixel positions).
-    const double cellpx = std::max(1.0, 2 * proj.edge_px);
-    std::unordered_map<long long, std::vector<int>> bins;
-    auto key = [&](double x, double y) { return (long long)std::floor(x / cellpx) * 1000003LL + (long long)std::floor(y / cellpx); };
-    for (int v = 0; v < grid.n_vertices(); ++v)
-      if (std::isfinite(proj.pixel[size_t(v)].x())) bins[key(proj.pixel[size_t(v)].x(), proj.pixel[size_t(v)].y())].push_back(v);
-    std::vector<char> keep(pl.points.size(), 1);
-    size_t i = 0;
-    for (const auto& c : d.curves.curves)
-      for (const auto& q : c) {
-        int best = -1;
-        double bd = 1e300;
-        for (int ox = -1; ox <= 1; ++ox)
-          for (int oy = -1; oy <= 1; ++oy) {
-            auto it = bins.find(key(q.x() + ox * cellpx, q.y() + oy * cellpx));
-            if (it == bins.end()) continue;
-            for (int v : it->second) {
-              const double dd = (proj.pixel[size_t(v)] - q).squaredNorm();
-              if (dd < bd) bd = dd, best = v;
-            }
-          }
-        if (best < 0) {
-          keep[i] = 0;
-          pl.points[i++] = Vec3::Zero();
-          continue;
-        }
-        const Vec2 off = q - proj.pixel[size_t(best)];
-        pl.points[i++] = surface.vertices[best] + proj.pixel_size * (off.x() * proj.right - off.y() * proj.up);
-      }
-    std::vector<std::array<int, 2>> segs;
-    for (const auto& sgm : pl.segments)
-      if (keep[size_t(sgm[0])] && keep[size_t(sgm[1])]) segs.push_back(sgm);
-    pl.segments = segs;
-  } else {
-    // Each curve point at the height of the surface below it (bilinear in the grid).
-    const int nx = int(std::ceil((area.width - 1) / cell)) + 1, ny = int(std::ceil((area.height - 1) / cell)) + 1;
-    std::vector<double> hgt(pl.points.size(), 0);
-    for (size_t i = 0; i < pl.points.size(); ++i) {
-      const double gx = std::clamp((pl.points[i].x() / d.pixel_mm - area.x) / cell, 0.0, nx - 1.0);
-      const double gy = std::clamp((-pl.points[i].y() / d.pixel_mm - area.y) / cell, 0.0, ny - 1.0);
-      const int i0 = std::min(nx - 2, int(gx)), j0 = std::min(ny - 2, int(gy));
-      const double fx = gx - i0, fy = gy - j0;
-      auto H = [&](int a, int b) { return r.height[size_t(b * nx + a)]; };
-      hgt[i] = (1 - fy) * ((1 - fx) * H(i0, j0) + fx * H(i0 + 1, j0)) + fy * ((1 - fx) * H(i0, j0 + 1) + fx * H(i0 + 1, j0 + 1));
-    }
-    TriMesh pts;
-    pts.vertices = pl.points;
-    pl.points = relief_surface(pts, hgt, base_choice == kCylinder ? DrawingBase::Cylinder : DrawingBase::Plane, circumference, front).vertices;
-  }
-  const QString relief_label = image_label(d, "relief");
-  add_mesh_layer(call.doc, relief_label, surface, r.height, {{"drawing_level", &level}}, true);
-  add_curve_layer(call.doc, image_label(d, "curves"), pl, vcg::Color4b(200, 30, 30, 255));
+  add_mesh_layer(call.doc, image_label(d, "relief"), r.surface, r.relief.height, {{"drawing_level", &r.level}}, true);
+  add_curve_layer(call.doc, image_label(d, "curves"), r.curves, vcg::Color4b(200, 30, 30, 255));
+  const int top = di.region_height.empty() ? 0 : std::max(0, *std::max_element(di.region_height.begin(), di.region_height.end()));
   call.log(QString("Relief from Line Drawing: %1 curves, %2 regions (%3 curves not between two regions), levels 0 to %4, "
                    "%5 curves fixed by the interpretation file; base %6, %7 vertices (%8 px apart), step %9 mesh units; "
                    "solves: %10 | %11; %12 s.%13")
@@ -381,12 +345,12 @@ void apply_relief(FilterCall& call) {
                .arg(di.ignored_curves)
                .arg(top)
                .arg(ip.overrides.size())
-               .arg(kBases[base_choice].section(' ', 0, base_choice == kCurrent ? 1 : 0))
-               .arg(thousands(grid.n_vertices()))
-               .arg(base_choice == kCurrent ? proj.edge_px : cell, 0, 'g', 3)
-               .arg(rp.step_height, 0, 'g', 3)
-               .arg(QString::fromStdString(r.laplacian_solve.summary()))
-               .arg(QString::fromStdString(r.relief_solve.summary()))
+               .arg(kBases[s.base].section(' ', 0, s.base == kCurrent ? 1 : 0))
+               .arg(thousands(r.base_vertices))
+               .arg(r.spacing_px, 0, 'g', 3)
+               .arg(s.relief.step_height, 0, 'g', 3)
+               .arg(QString::fromStdString(r.relief.laplacian_solve.summary()))
+               .arg(QString::fromStdString(r.relief.relief_solve.summary()))
                .arg(seconds_since(t0), 0, 'f', 2)
                .arg(written.isEmpty() ? QString() : " Interpretation written to " + written + "."));
 }

@@ -160,9 +160,10 @@ void apply_optimal(FilterCall& call) {
   const bool relief = read_enum(call, "curve", "Curves the scale is for", 2) == 1;
   const bool quality = read_bool(call, "quality", "Vertex quality = scale");
   View view = view_of(call.mesh(), call.log);
-  OptimalScaleOptions o = resolve(call, range, mesh_scale(view.mesh));
+  const Surface surface = surface_of(view);
+  OptimalScaleOptions o = resolve(call, range, surface.scale());
   o.curve = relief ? ScaleStrength::ReliefEdges : ScaleStrength::RidgesValleys;
-  const OptimalScale s = optimal_scale(view.mesh, o);
+  const OptimalScale s = optimal_scale(surface, o);
   write_scale(call, view, s);
   write_vertex_attribute(call.mesh().cm, view, "optimal_scale_strength", s.strength);
   if (quality) {
@@ -194,12 +195,13 @@ void apply_smoothed(FilterCall& call) {
   const bool relief = read_enum(call, "curve", "Curves the scale is for", 2) == 1;
   const Length fs = read_length(call, "final_smoothing", "Final smoothing", 0, 100);
   View view = view_of(call.mesh(), call.log);
-  const MeshScale ms = mesh_scale(view.mesh);
+  const Surface surface = surface_of(view);
+  const MeshScale& ms = surface.scale();
   OptimalScaleOptions o = resolve(call, range, ms);
   o.curve = relief ? ScaleStrength::ReliefEdges : ScaleStrength::RidgesValleys;
   o.final_smoothing_edges = fs.is_auto() ? kAutoFinalSmoothing : fs.kind == Length::Kind::Edges ? fs.value : fs.value / ms.edge;
   o.smoothed_surface = true;
-  const OptimalScale s = optimal_scale(view.mesh, o);
+  const OptimalScale s = optimal_scale(surface, o);
   const QString label = derived_label(call.mesh(), "optimally smoothed");
   add_surface_layer(call.doc, label, call.mesh(), view, s.smoothed);
   write_scale(call, view, s);
@@ -229,9 +231,10 @@ void apply_ridges(FilterCall& call) {
   const double lift = read_lift(call);
   p.progress = call.progress;
   View view = view_of(call.mesh(), call.log);
-  const OptimalScaleOptions o = resolve(call, range, mesh_scale(view.mesh));
-  const MultiscaleRidgeValleys r = multiscale_ridges_valleys(view.mesh, o, p);
-  const std::vector<Vec3> normals = vertex_normals(view.mesh, vertex_faces(view.mesh));
+  const Surface surface = surface_of(view);
+  const OptimalScaleOptions o = resolve(call, range, surface.scale());
+  const MultiscaleRidgeValleys r = multiscale_ridges_valleys(surface, o, p);
+  const std::vector<Vec3>& normals = surface.normals();
   const QString lr = derived_label(call.mesh(), "multi-scale ridges"), lv = derived_label(call.mesh(), "multi-scale valleys");
   const double h = r.scale.scale.edge;
   add_curve_layer(call.doc, lr, r.curves.ridges, vcg::Color4b(200, 30, 30, 255), &normals, lift * h);
@@ -277,11 +280,12 @@ void apply_relief(FilterCall& call) {
   const double lift = read_lift(call);
   p.progress = call.progress;
   View view = view_of(call.mesh(), call.log);
-  const OptimalScaleOptions o = resolve(call, range, mesh_scale(view.mesh));
-  const MultiscaleReliefEdges r = multiscale_relief_edges(view.mesh, o, p);
+  const Surface surface = surface_of(view);
+  const OptimalScaleOptions o = resolve(call, range, surface.scale());
+  const MultiscaleReliefEdges r = multiscale_relief_edges(surface, o, p);
   Polylines edges = r.curves.edges;
   for (auto& s : edges.strength) s /= kDeg;
-  const std::vector<Vec3> normals = vertex_normals(view.mesh, vertex_faces(view.mesh));
+  const std::vector<Vec3>& normals = surface.normals();
   const QString label = derived_label(call.mesh(), "multi-scale relief edges");
   add_curve_layer(call.doc, label, edges, vcg::Color4b(0, 0, 0, 255), &normals, lift * r.scale.scale.edge);
   write_scale(call, view, r.scale);

@@ -131,7 +131,7 @@ void apply_field(FilterCall& call) {
   const int quality = read_enum(call, "quality", "Vertex quality", kFieldQuality.size());
   const bool curvature_dir = read_bool(call, "curvature_dir", "Show in Show Curvature");
   View view = view_of(call.mesh(), call.log);
-  const ProminentFieldResult f = compute_prominent_field(view.mesh, p);
+  const ProminentFieldResult f = compute_prominent_field(surface_of(view), p);
   const Curvature& c = f.curvature;
   const int nv = view.mesh.n_vertices();
   std::vector<double> kp(nv), kq(nv);
@@ -201,7 +201,7 @@ void apply_enhance(FilterCall& call) {
   p.field = read_field_parameters(call);
   p.progress = call.progress;
   View view = view_of(call.mesh(), call.log);
-  const EnhanceResult r = enhance_relief(view.mesh, p);
+  const EnhanceResult r = enhance_relief(surface_of(view), p);
   const QString label = derived_label(call.mesh(), "enhanced");
   add_surface_layer(call.doc, label, call.mesh(), view, r.positions, &r.height_change);
   log_field(call, r.field, p.field);
@@ -250,7 +250,7 @@ void apply_coloring(FilterCall& call) {
   const Surface surface = surface_of(view);
   ColoringResult col;
   if (which == ColoringCurvature::Prominent) {
-    const ProminentFieldResult f = compute_prominent_field(view.mesh, p);
+    const ProminentFieldResult f = compute_prominent_field(surface, p);
     col = curvature_coloring(f.curvature, &f.field, f.scale.counts, which, contrast);
     log_field(call, f, p);
   } else {

@@ -89,8 +89,7 @@ void relief_parameters(MeshModel&, RichParameterList& par) {
   add_lift(par);
 }
 
-void apply_relief(FilterCall& call) {
-  auto t0 = std::chrono::steady_clock::now();
+ReliefEdgeParams read_relief_parameters(FilterCall& call) {
   ReliefEdgeParams p;
   p.presmoothing = read_presmoothing(call);
   p.base_scale = read_base_scale(call);
@@ -99,13 +98,44 @@ void apply_relief(FilterCall& call) {
   p.strong_error = read_float(call, "strong_error", "Model error, strong edges", 0, 1);
   p.weak_error = std::max(read_float(call, "weak_error", "Model error, weak edges", 0, 1), p.strong_error);
   p.strong_angle = read_float(call, "strong_angle", "Steepness, strong edges (degrees)", 0, 90) * kDeg;
-  p.weak_angle_h = read_float(call, "weak_angle", "Steepness, weak edges (degrees)", 0, 90) * kDeg;
+  p.weak_angle = read_float(call, "weak_angle", "Steepness, weak edges (degrees)", 0, 90) * kDeg;
   p.min_length_edges = read_float(call, "min_length", "Minimum curve length", 0, 1e6);
   p.link_gap_edges = read_float(call, "gap", "Bridge gaps up to", 0, 20);
+  p.progress = call.progress;
+  return p;
+}
+
+// The run's thresholds and scales, and what to change when nothing passed.
+void log_relief(FilterCall& call, const ReliefEdgeResult& r, const ReliefEdgeParams& p) {
+  call.log(scale_summary(r.scale, r.noise, r.presmoothing, p.presmoothing));
+  call.log(QString("Direction window %1 deg; hysteresis: strong = error <= %2 and tilt >= %3 deg, weak = error <= "
+                   "%4 and tilt >= %5 deg (automatic: %9 deg from the crossings, %10 deg from the noise); base scale "
+                   "%6 (solved by %7), edge smoothing %8.")
+               .arg(r.window / kDeg, 0, 'f', 1)
+               .arg(p.strong_error, 0, 'g', 3)
+               .arg(r.strong_angle / kDeg, 0, 'f', 1)
+               .arg(p.weak_error, 0, 'g', 3)
+               .arg(r.weak_angle / kDeg, 0, 'f', 1)
+               .arg(r.base_scale, 0, 'g', 4)
+               .arg(QString::fromStdString(r.base.solve.summary()))
+               .arg(r.edge_smoothing, 0, 'g', 4)
+               .arg(r.automatic_angle / kDeg, 0, 'f', 1)
+               .arg(r.noise_angle / kDeg, 0, 'f', 1));
+  if (r.edges.segments.empty())
+    call.log(QString("No relief edge passed the thresholds: the layer is empty (meshlabserver then reports \"Failed "
+                     "saving\" for it). The steepest edge crossing seen tilts by %1 deg (strong threshold %2 deg): set "
+                     "\"Steepness, strong edges\" below it, or raise \"Model error, strong edges\".")
+                 .arg(r.steepest_crossing / kDeg, 0, 'f', 1)
+                 .arg(r.strong_angle / kDeg, 0, 'f', 1));
+  if (!r.base.solve.converged) log_unconverged(call, r.base, r.base_scale, r.scale.edge);
+}
+
+void apply_relief(FilterCall& call) {
+  auto t0 = std::chrono::steady_clock::now();
+  const ReliefEdgeParams p = read_relief_parameters(call);
   const bool per_vertex = read_bool(call, "per_vertex", "Write per-vertex results");
   const bool quality = read_bool(call, "quality", "Vertex quality = curvature across the edge");
   const double lift = read_lift(call);
-  p.progress = call.progress;
   View view = view_of(call.mesh(), call.log);
   ReliefEdgeResult r = compute_relief_edges(surface_of(view), p);
   Polylines edges = r.edges;
@@ -131,27 +161,7 @@ void apply_relief(FilterCall& call) {
                .arg(label)
                .arg(secs, 0, 'f', 3)
                .arg(r.links));
-  call.log(scale_summary(r.scale, r.noise, r.presmoothing, p.presmoothing));
-  call.log(QString("Direction window %1 deg; hysteresis: strong = error <= %2 and tilt >= %3 deg, weak = error <= "
-                   "%4 and tilt >= %5 deg (automatic: %9 deg from the crossings, %10 deg from the noise); base scale "
-                   "%6 (solved by %7), edge smoothing %8.")
-               .arg(r.window / kDeg, 0, 'f', 1)
-               .arg(p.strong_error, 0, 'g', 3)
-               .arg(r.strong_angle / kDeg, 0, 'f', 1)
-               .arg(p.weak_error, 0, 'g', 3)
-               .arg(r.weak_angle / kDeg, 0, 'f', 1)
-               .arg(r.base_scale, 0, 'g', 4)
-               .arg(QString::fromStdString(r.base.solve.summary()))
-               .arg(r.edge_smoothing, 0, 'g', 4)
-               .arg(r.automatic_angle / kDeg, 0, 'f', 1)
-               .arg(r.noise_angle / kDeg, 0, 'f', 1));
-  if (r.edges.segments.empty())
-    call.log(QString("No relief edge passed the thresholds: the layer is empty (meshlabserver then reports \"Failed "
-                     "saving\" for it). The steepest edge crossing seen tilts by %1 deg (strong threshold %2 deg): set "
-                     "\"Steepness, strong edges\" below it, or raise \"Model error, strong edges\".")
-                 .arg(r.steepest_crossing / kDeg, 0, 'f', 1)
-                 .arg(r.strong_angle / kDeg, 0, 'f', 1));
-  if (!r.base.solve.converged) log_unconverged(call, r.base, r.base_scale, r.scale.edge);
+  log_relief(call, r, p);
 }
 
 void base_parameters(MeshModel&, RichParameterList& par) {

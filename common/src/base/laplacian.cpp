@@ -93,4 +93,20 @@ LaplacianResult cotangent_laplacian(const TriMesh& mesh, const LaplacianOptions&
   return cotangent_laplacian(mesh, t, options);
 }
 
+Eigen::SparseMatrix<double> uniform_laplacian(const VertexRing& ring) {
+  count_work(Work::Laplacian);
+  const int n = int(ring.offset.size()) - 1;
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(ring.vertex.size() + size_t(n));
+  for (int i = 0; i < n; ++i) {
+    const int degree = ring.offset[i + 1] - ring.offset[i];
+    if (degree == 0) continue;
+    entries.emplace_back(i, i, 1.0);
+    for (int k = ring.offset[i]; k < ring.offset[i + 1]; ++k) entries.emplace_back(i, ring.vertex[k], -1.0 / degree);
+  }
+  Eigen::SparseMatrix<double> L(n, n);
+  L.setFromTriplets(entries.begin(), entries.end());
+  return L;
+}
+
 }  // namespace reliefkit

@@ -134,35 +134,54 @@ VertexRing vertex_rings(const TriMesh& mesh, const VertexFaces& vf) {
   return r;
 }
 
+// The neighbours of v across boundary edges, ascending, in `out`: among the other corners of v's
+// faces, an edge with one face appears once. `others` is scratch space.
+static void collect_boundary_neighbours(const TriMesh& mesh, const VertexFaces& vf, int v, std::vector<int>& others,
+                                        std::vector<int>& out) {
+  others.clear();
+  out.clear();
+  for (int k = vf.offset[v]; k < vf.offset[v + 1]; ++k) {
+    const auto& f = mesh.faces[vf.face[k]];
+    const int c = vf.corner[k];
+    for (int u : {f[(c + 1) % 3], f[(c + 2) % 3]})
+      if (u != v) others.push_back(u);
+  }
+  std::sort(others.begin(), others.end());  // O(d log d): fans of 100,000 faces stay cheap
+  for (size_t i = 0; i < others.size();) {
+    size_t j = i;
+    while (j < others.size() && others[j] == others[i]) ++j;
+    if (j - i == 1) out.push_back(others[i]);
+    i = j;
+  }
+}
+
+// Counted, then filled in place: no list per vertex (half a million small allocations cost more
+// than sorting each vertex's corners twice).
 VertexRing boundary_rings(const TriMesh& mesh, const VertexFaces& vf) {
   const int nv = mesh.n_vertices();
   VertexRing r;
   r.offset.assign(nv + 1, 0);
-  std::vector<std::vector<int>> nb(nv);
 #pragma omp parallel
   {
-    std::vector<int> others;  // the other corners of v's faces; an edge with one face appears once
+    std::vector<int> others, nb;
 #pragma omp for schedule(dynamic, 4096)
     for (int v = 0; v < nv; ++v) {
-      others.clear();
-      for (int k = vf.offset[v]; k < vf.offset[v + 1]; ++k) {
-        const auto& f = mesh.faces[vf.face[k]];
-        const int c = vf.corner[k];
-        for (int u : {f[(c + 1) % 3], f[(c + 2) % 3]})
-          if (u != v) others.push_back(u);
-      }
-      std::sort(others.begin(), others.end());  // O(d log d): fans of 100,000 faces stay cheap
-      for (size_t i = 0; i < others.size();) {
-        size_t j = i;
-        while (j < others.size() && others[j] == others[i]) ++j;
-        if (j - i == 1) nb[v].push_back(others[i]);
-        i = j;
-      }
+      collect_boundary_neighbours(mesh, vf, v, others, nb);
+      r.offset[v + 1] = static_cast<int>(nb.size());
     }
   }
-  for (int v = 0; v < nv; ++v) r.offset[v + 1] = r.offset[v] + static_cast<int>(nb[v].size());
-  r.vertex.reserve(r.offset[nv]);
-  for (int v = 0; v < nv; ++v) r.vertex.insert(r.vertex.end(), nb[v].begin(), nb[v].end());
+  for (int v = 0; v < nv; ++v) r.offset[v + 1] += r.offset[v];
+  r.vertex.resize(size_t(r.offset[nv]));
+#pragma omp parallel
+  {
+    std::vector<int> others, nb;
+#pragma omp for schedule(dynamic, 4096)
+    for (int v = 0; v < nv; ++v) {
+      if (r.offset[v + 1] == r.offset[v]) continue;
+      collect_boundary_neighbours(mesh, vf, v, others, nb);
+      std::copy(nb.begin(), nb.end(), r.vertex.begin() + r.offset[v]);
+    }
+  }
   return r;
 }
 
@@ -174,6 +193,32 @@ MeshTopology mesh_topology(const TriMesh& mesh, VertexFaces faces) {
   t.ring = vertex_rings(mesh, t.faces);
   t.border = boundary_rings(mesh, t.faces);
   return t;
+}
+
+std::vector<MeshEdge> mesh_edges(const TriMesh& mesh, const VertexFaces& vf) {
+  std::vector<MeshEdge> edges;
+  std::vector<std::pair<int, int>> other;  // (b, face) of a's faces, b > a; faces in increasing order
+  for (int a = 0; a < mesh.n_vertices(); ++a) {
+    other.clear();
+    for (int k = vf.offset[a]; k < vf.offset[a + 1]; ++k) {
+      const auto& f = mesh.faces[vf.face[k]];
+      const int c = vf.corner[k];
+      for (int b : {f[(c + 1) % 3], f[(c + 2) % 3]})
+        if (b > a) other.push_back({b, vf.face[k]});
+    }
+    std::stable_sort(other.begin(), other.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (size_t i = 0; i < other.size();) {
+      MeshEdge e;
+      e.a = a;
+      e.b = other[i].first;
+      for (; i < other.size() && other[i].first == e.b; ++i) {
+        if (e.faces < 2) e.face[size_t(e.faces)] = other[i].second;
+        ++e.faces;
+      }
+      edges.push_back(e);
+    }
+  }
+  return edges;
 }
 
 }  // namespace reliefkit

@@ -40,6 +40,7 @@ RepairedMesh repair_for_computation(const TriMesh& in) {
 }
 
 namespace {
+
 // The adjacency's corners after faces were turned (their corners 1 and 2 swapped).
 void swap_flipped_corners(const TriMesh& mesh, const std::vector<signed char>& flip, VertexFaces& vf) {
   for (int f = 0; f < mesh.n_faces(); ++f) {
@@ -52,6 +53,232 @@ void swap_flipped_corners(const TriMesh& mesh, const std::vector<signed char>& f
     }
   }
 }
+
+uint64_t position_hash(Vec3 p) {
+  uint64_t h = 1469598103934665603ull;
+  for (int k = 0; k < 3; ++k) {
+    double x = p[k];
+    if (x == 0) x = 0;  // -0 and +0 are the same position
+    uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    h = (h ^ bits) * 1099511628211ull;
+    h ^= h >> 29;
+  }
+  return h;
+}
+
+// For every vertex, the first input vertex at its exact position (itself if none; -1 if not finite).
+// Vertices are sorted by a 64-bit hash of their exact coordinates (computed in parallel; a direct
+// sort of integer pairs, not an indirect one on coordinates); equal hashes are then told apart by
+// their coordinates.
+std::vector<int> first_at_same_position(const TriMesh& mesh, long long& welded) {
+  const int nv = mesh.n_vertices();
+  std::vector<std::pair<uint64_t, int>> keyed(nv);
+#pragma omp parallel for schedule(static)
+  for (int v = 0; v < nv; ++v) keyed[v] = {position_hash(mesh.vertices[v]), v};
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<int> rep_of(nv, -1);
+  for (int i = 0; i < nv;) {
+    int j = i;
+    while (j < nv && keyed[j].first == keyed[i].first) ++j;
+    for (int k = i; k < j; ++k) {  // a run of equal hashes: almost always one vertex
+      const int v = keyed[k].second;
+      if (!mesh.vertices[v].allFinite()) continue;
+      for (int l = i; l < k; ++l) {
+        const int u = keyed[l].second;
+        if (rep_of[u] == u && mesh.vertices[u] == mesh.vertices[v]) {
+          rep_of[v] = u;
+          ++welded;
+          break;
+        }
+      }
+      if (rep_of[v] < 0) rep_of[v] = v;
+    }
+    i = j;
+  }
+  return rep_of;
+}
+
+// 1. Weld vertices at exactly the same position.
+void weld_coincident_vertices(TriMesh& mesh, RepairReport& rep, std::vector<int>* of_input) {
+  const int nv = mesh.n_vertices();
+  const std::vector<int> rep_of = first_at_same_position(mesh, rep.welded_vertices);
+  if (rep.welded_vertices == 0) return;
+  std::vector<int> index(nv, -1);
+  int kept = 0;
+  for (int v = 0; v < nv; ++v)
+    if (rep_of[v] < 0 || rep_of[v] == v) {
+      index[v] = kept;
+      mesh.vertices[kept++] = mesh.vertices[v];
+    }
+  for (int v = 0; v < nv; ++v)
+    if (index[v] < 0) index[v] = index[rep_of[v]];
+  mesh.vertices.resize(kept);
+  for (auto& f : mesh.faces)
+    for (int& v : f) v = index[v];
+  if (of_input) *of_input = std::move(index);
+}
+
+int valence(const VertexFaces& vf, int v) { return vf.offset[v + 1] - vf.offset[v]; }
+
+// Whether an earlier face has the same three vertices. It is looked for among the faces of the
+// face's vertex of least valence (no global sort; linear in the faces even around a vertex of very
+// high valence).
+bool repeats_an_earlier_face(const TriMesh& mesh, const VertexFaces& vf, int i) {
+  const auto& t = mesh.faces[i];
+  int c = t[0];
+  for (int v : t)
+    if (valence(vf, v) < valence(vf, c)) c = v;
+  auto key = t;
+  std::sort(key.begin(), key.end());
+  for (int k = vf.offset[c]; k < vf.offset[c + 1]; ++k) {
+    const int g = vf.face[k];
+    if (g >= i) continue;
+    auto kg = mesh.faces[g];
+    std::sort(kg.begin(), kg.end());
+    if (kg == key) return true;
+  }
+  return false;
+}
+
+// 2. Drop faces collapsed by welding and duplicated faces (vf: the adjacency, renewed if faces go).
+void drop_collapsed_and_duplicate_faces(TriMesh& mesh, VertexFaces& vf, RepairReport& rep) {
+  const int nf = mesh.n_faces();
+  std::vector<char> drop(nf, 0);
+  long long collapsed = 0, duplicates = 0;
+  const bool welded = rep.welded_vertices > 0;
+#pragma omp parallel for schedule(dynamic, 4096) reduction(+ : collapsed, duplicates)
+  for (int i = 0; i < nf; ++i) {
+    const auto& t = mesh.faces[i];
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+      if (welded) drop[i] = 1, ++collapsed;  // input degeneracies stay (counted later)
+    } else if (repeats_an_earlier_face(mesh, vf, i)) {
+      drop[i] = 1, ++duplicates;
+    }
+  }
+  rep.collapsed_faces = collapsed;
+  rep.duplicate_faces = duplicates;
+  if (collapsed + duplicates == 0) return;
+  size_t kept = 0;
+  for (int i = 0; i < nf; ++i)
+    if (!drop[i]) mesh.faces[kept++] = mesh.faces[i];
+  mesh.faces.resize(kept);
+  vf = vertex_faces(mesh);
+}
+
+// Per face and side: the neighbour across it (-1: boundary or non-manifold) and whether the two
+// traverse the edge in the same direction (then one of them must be flipped).
+struct FaceNeighbours {
+  std::vector<std::array<int, 3>> across;
+  std::vector<std::array<char, 3>> same_direction;
+  std::vector<char> closed;  // every edge of the face has exactly two faces
+};
+
+// The face across an edge is found among the faces of the edge's end of least valence; only a
+// manifold edge (exactly two faces) gives a neighbour.
+FaceNeighbours face_neighbours(const TriMesh& mesh, const VertexFaces& vf) {
+  const int nf = mesh.n_faces();
+  FaceNeighbours n{std::vector<std::array<int, 3>>(nf, {-1, -1, -1}),
+                   std::vector<std::array<char, 3>>(nf, {0, 0, 0}), std::vector<char>(nf, 1)};
+#pragma omp parallel for schedule(dynamic, 4096)
+  for (int f = 0; f < nf; ++f) {
+    const auto& t = mesh.faces[f];
+    for (int j = 0; j < 3; ++j) {
+      const int a = t[j], b = t[(j + 1) % 3];
+      if (a == b) {
+        n.closed[f] = 0;
+        continue;
+      }
+      const int c = valence(vf, a) <= valence(vf, b) ? a : b;
+      int found = -1, count = 0;
+      char same = 0;
+      for (int k = vf.offset[c]; k < vf.offset[c + 1]; ++k) {
+        const int g = vf.face[k];
+        if (g == f) continue;
+        const auto& u = mesh.faces[g];
+        for (int i = 0; i < 3; ++i) {
+          if (u[i] == a && u[(i + 1) % 3] == b) ++count, found = g, same = 1;
+          if (u[i] == b && u[(i + 1) % 3] == a) ++count, found = g, same = 0;
+        }
+      }
+      if (count == 1) {
+        n.across[f][j] = found;
+        n.same_direction[f][j] = same;
+      } else {
+        n.closed[f] = 0;
+      }
+    }
+  }
+  return n;
+}
+
+// Breadth-first from `seed` over manifold edges: the part's faces, each with the flip that makes it
+// agree with the seed (flip[f] set). Returns false when the part cannot be oriented coherently.
+bool spread_orientation(int seed, const FaceNeighbours& n, std::vector<signed char>& flip, std::vector<int>& part,
+                        bool& closed) {
+  flip[seed] = 0;
+  part.assign(1, seed);
+  bool conflict = false;
+  closed = true;
+  for (size_t q = 0; q < part.size(); ++q) {
+    const int f = part[q];
+    closed = closed && n.closed[f];
+    for (int j = 0; j < 3; ++j) {
+      const int g = n.across[f][j];
+      if (g < 0) continue;
+      const signed char want = static_cast<signed char>(flip[f] ^ (n.same_direction[f][j] ? 1 : 0));
+      if (flip[g] < 0) {
+        flip[g] = want;
+        part.push_back(g);
+      } else if (flip[g] != want) {
+        conflict = true;
+      }
+    }
+  }
+  return !conflict;
+}
+
+double signed_volume_6(const TriMesh& mesh, const std::vector<int>& part, const std::vector<signed char>& flip) {
+  double vol = 0;
+  for (int f : part) {
+    const auto& t = mesh.faces[f];
+    const double v6 = mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+    vol += flip[f] ? -v6 : v6;
+  }
+  return vol;
+}
+
+// 3. Coherent orientation per part, the majority's; a closed part's normals outwards (positive
+// signed volume). Returns each face's flip (1: turned).
+std::vector<signed char> orient_parts(TriMesh& mesh, const FaceNeighbours& n, RepairReport& rep) {
+  const int nf = mesh.n_faces();
+  std::vector<signed char> flip(nf, -1);
+  std::vector<int> part;
+  for (int seed = 0; seed < nf; ++seed) {
+    if (flip[seed] >= 0) continue;
+    bool closed = false;
+    if (!spread_orientation(seed, n, flip, part, closed)) {
+      ++rep.conflicting_parts;
+      for (int f : part) flip[f] = 0;  // not safe to change: leave the part as it was
+      continue;
+    }
+    long long flips = 0;
+    for (int f : part) flips += flip[f];
+    if (2 * flips > static_cast<long long>(part.size())) {
+      for (int f : part) flip[f] ^= 1;
+      flips = static_cast<long long>(part.size()) - flips;
+    }
+    rep.flipped_faces += flips;
+    if (closed && signed_volume_6(mesh, part, flip) < 0) {
+      for (int f : part) flip[f] ^= 1;
+      ++rep.reversed_parts;
+    }
+    for (int f : part)
+      if (flip[f]) std::swap(mesh.faces[f][1], mesh.faces[f][2]);
+  }
+  return flip;
+}
+
 }  // namespace
 
 RepairReport repair_in_place(TriMesh& mesh, std::vector<int>* of_input, VertexFaces* faces) {
@@ -67,193 +294,10 @@ RepairReport repair_in_place(TriMesh& mesh, std::vector<int>* of_input, VertexFa
   for (const auto& f : mesh.faces)
     for (int v : f)
       if (v < 0 || v >= nv) return rep;
-
-  // 1. Weld vertices at exactly the same position. Vertices are sorted by a 64-bit hash of their
-  // exact coordinates (computed in parallel; a direct sort of integer pairs, not an indirect one on
-  // coordinates); equal hashes are then told apart by their coordinates.
-  {
-    std::vector<std::pair<uint64_t, int>> keyed(nv);
-#pragma omp parallel for schedule(static)
-    for (int v = 0; v < nv; ++v) {
-      uint64_t h = 1469598103934665603ull;
-      for (int k = 0; k < 3; ++k) {
-        double x = mesh.vertices[v][k];
-        if (x == 0) x = 0;  // -0 and +0 are the same position
-        uint64_t bits;
-        std::memcpy(&bits, &x, sizeof bits);
-        h = (h ^ bits) * 1099511628211ull;
-        h ^= h >> 29;
-      }
-      keyed[v] = {h, v};
-    }
-    std::sort(keyed.begin(), keyed.end());
-    std::vector<int> rep_of(nv, -1);  // the first input vertex at each position
-    for (int i = 0; i < nv;) {
-      int j = i;
-      while (j < nv && keyed[j].first == keyed[i].first) ++j;
-      for (int k = i; k < j; ++k) {  // a run of equal hashes: almost always one vertex
-        const int v = keyed[k].second;
-        if (!mesh.vertices[v].allFinite()) continue;
-        for (int l = i; l < k; ++l) {
-          const int u = keyed[l].second;
-          if (rep_of[u] == u && mesh.vertices[u] == mesh.vertices[v]) {
-            rep_of[v] = u;
-            ++rep.welded_vertices;
-            break;
-          }
-        }
-        if (rep_of[v] < 0) rep_of[v] = v;
-      }
-      i = j;
-    }
-    if (rep.welded_vertices > 0) {
-      std::vector<int> index(nv, -1);
-      int kept = 0;
-      for (int v = 0; v < nv; ++v)
-        if (rep_of[v] < 0 || rep_of[v] == v) {
-          index[v] = kept;
-          mesh.vertices[kept++] = mesh.vertices[v];
-        }
-      for (int v = 0; v < nv; ++v)
-        if (index[v] < 0) index[v] = index[rep_of[v]];
-      mesh.vertices.resize(kept);
-      for (auto& f : mesh.faces)
-        for (int& v : f) v = index[v];
-      if (of_input) *of_input = std::move(index);
-    }
-  }
-
-  // 2. Drop faces collapsed by welding and duplicated faces. Duplicates share all three vertices:
-  // they are looked for among the faces of the face's vertex of least valence (no global sort;
-  // linear in the faces even around a vertex of very high valence).
+  weld_coincident_vertices(mesh, rep, of_input);
   VertexFaces vf = vertex_faces(mesh);
-  auto deg = [&](int v) { return vf.offset[v + 1] - vf.offset[v]; };
-  {
-    const int nf0 = mesh.n_faces();
-    std::vector<char> drop(nf0, 0);
-    long long collapsed = 0, duplicates = 0;
-#pragma omp parallel for schedule(dynamic, 4096) reduction(+ : collapsed, duplicates)
-    for (int i = 0; i < nf0; ++i) {
-      const auto& t = mesh.faces[i];
-      if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
-        if (rep.welded_vertices > 0) drop[i] = 1, ++collapsed;  // input degeneracies stay (counted later)
-        continue;
-      }
-      int c = t[0];
-      for (int v : t)
-        if (deg(v) < deg(c)) c = v;
-      auto key = t;
-      std::sort(key.begin(), key.end());
-      for (int k = vf.offset[c]; k < vf.offset[c + 1]; ++k) {
-        const int g = vf.face[k];
-        if (g >= i) continue;  // an earlier face on the same vertices makes this one a duplicate
-        auto kg = mesh.faces[g];
-        std::sort(kg.begin(), kg.end());
-        if (kg == key) {
-          drop[i] = 1, ++duplicates;
-          break;
-        }
-      }
-    }
-    rep.collapsed_faces = collapsed;
-    rep.duplicate_faces = duplicates;
-    if (collapsed + duplicates > 0) {
-      size_t kept = 0;
-      for (int i = 0; i < nf0; ++i)
-        if (!drop[i]) mesh.faces[kept++] = mesh.faces[i];
-      mesh.faces.resize(kept);
-      vf = vertex_faces(mesh);
-    }
-  }
-
-  // 3. Coherent orientation per part: breadth-first over manifold edges (exactly two faces). The
-  // face across an edge is found among the faces of the edge's end of least valence.
-  const int nf = mesh.n_faces();
-  // Per face and side: the neighbour across it (-1: boundary or non-manifold) and whether the two
-  // traverse the edge in the same direction (then one of them must be flipped).
-  std::vector<std::array<int, 3>> across(nf, {-1, -1, -1});
-  std::vector<std::array<char, 3>> same_dir(nf, {0, 0, 0});
-  std::vector<char> closed_edge_ok(nf, 1);  // every edge of the face has exactly two faces
-#pragma omp parallel for schedule(dynamic, 4096)
-  for (int f = 0; f < nf; ++f) {
-    const auto& t = mesh.faces[f];
-    for (int j = 0; j < 3; ++j) {
-      const int a = t[j], b = t[(j + 1) % 3];
-      if (a == b) {
-        closed_edge_ok[f] = 0;
-        continue;
-      }
-      const int c = deg(a) <= deg(b) ? a : b;
-      int found = -1, count = 0;
-      char same = 0;
-      for (int k = vf.offset[c]; k < vf.offset[c + 1]; ++k) {
-        const int g = vf.face[k];
-        if (g == f) continue;
-        const auto& u = mesh.faces[g];
-        for (int i = 0; i < 3; ++i) {
-          if (u[i] == a && u[(i + 1) % 3] == b) ++count, found = g, same = 1;
-          if (u[i] == b && u[(i + 1) % 3] == a) ++count, found = g, same = 0;
-        }
-      }
-      if (count == 1) {
-        across[f][j] = found;
-        same_dir[f][j] = same;
-      } else {
-        closed_edge_ok[f] = 0;
-      }
-    }
-  }
-  std::vector<signed char> flip(nf, -1);
-  std::vector<int> queue, part;
-  for (int seed = 0; seed < nf; ++seed) {
-    if (flip[seed] >= 0) continue;
-    flip[seed] = 0;
-    queue.assign(1, seed);
-    part.clear();
-    bool conflict = false, closed = true;
-    for (size_t q = 0; q < queue.size(); ++q) {
-      const int f = queue[q];
-      part.push_back(f);
-      closed = closed && closed_edge_ok[f];
-      for (int j = 0; j < 3; ++j) {
-        const int g = across[f][j];
-        if (g < 0) continue;
-        const signed char want = static_cast<signed char>(flip[f] ^ (same_dir[f][j] ? 1 : 0));
-        if (flip[g] < 0) {
-          flip[g] = want;
-          queue.push_back(g);
-        } else if (flip[g] != want) {
-          conflict = true;
-        }
-      }
-    }
-    if (conflict) {
-      ++rep.conflicting_parts;
-      for (int f : part) flip[f] = 0;  // not safe to change: leave the part as it was
-      continue;
-    }
-    long long flips = 0;
-    for (int f : part) flips += flip[f];
-    if (2 * flips > static_cast<long long>(part.size())) {  // keep the majority's orientation
-      for (int f : part) flip[f] ^= 1;
-      flips = static_cast<long long>(part.size()) - flips;
-    }
-    rep.flipped_faces += flips;
-    if (closed) {  // a closed part: normals outwards (positive signed volume)
-      double vol = 0;
-      for (int f : part) {
-        const auto& t = mesh.faces[f];
-        double v6 = mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
-        vol += flip[f] ? -v6 : v6;
-      }
-      if (vol < 0) {
-        for (int f : part) flip[f] ^= 1;
-        ++rep.reversed_parts;
-      }
-    }
-    for (int f : part)
-      if (flip[f]) std::swap(mesh.faces[f][1], mesh.faces[f][2]);
-  }
+  drop_collapsed_and_duplicate_faces(mesh, vf, rep);
+  const std::vector<signed char> flip = orient_parts(mesh, face_neighbours(mesh, vf), rep);
   if (faces) {
     if (rep.flipped_faces + rep.reversed_parts > 0) swap_flipped_corners(mesh, flip, vf);
     *faces = std::move(vf);

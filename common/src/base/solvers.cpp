@@ -8,6 +8,8 @@
 #include <new>
 #include <vector>
 
+#include "reliefkit/base/multilevel.h"
+
 namespace reliefkit {
 
 std::string SolveReport::summary() const {
@@ -20,12 +22,6 @@ std::string SolveReport::summary() const {
 }
 
 namespace {
-
-// A symmetric matrix's compressed columns are its compressed rows: the row-major view of the same
-// arrays lets Eigen's sparse products run on every core.
-Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor>> row_major(const Eigen::SparseMatrix<double>& A) {
-  return {A.rows(), A.cols(), A.nonZeros(), A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr()};
-}
 
 double relative_residual(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& X) {
   if (!X.allFinite()) return std::numeric_limits<double>::infinity();
@@ -64,26 +60,16 @@ bool iterative(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, E
   return rep.residual <= o.tolerance;
 }
 
-// CHOLMOD's supernodal Cholesky factorization. Out of memory and a matrix that is not numerically
-// positive definite both end in a report, not an exception.
-bool direct(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& X,
+// CHOLMOD's supernodal Cholesky factorization, kept in `f`. Out of memory and a matrix that is not
+// numerically positive definite both end in a report, not an exception.
+bool direct(SpdFactorization& f, const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& X,
             const SolverOptions& o, SolveReport& rep, std::string& why) {
   try {
     report_progress(o, 0.1, o.label);
-    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
-    llt.cholmod().print = 0;  // CHOLMOD writes nothing to stdout; failures come back as info()
-    // AMD ordering only. CHOLMOD's default also tries METIS when AMD's fill is high, and on a 4 M-face
-    // mesh its nested dissection took 15 s to save little fill: 33 s in all against 17 s with AMD.
-    llt.cholmod().nmethods = 1;
-    llt.cholmod().method[0].ordering = CHOLMOD_AMD;
-    llt.compute(A);
-    if (llt.info() != Eigen::Success) {
-      why = "the Cholesky factorization failed (matrix not positive definite, or not enough memory)";
-      return false;
-    }
+    if (!f.factorize(A, why)) return false;
     report_progress(o, 0.9, o.label);
-    Eigen::MatrixXd Y = llt.solve(B);
-    if (llt.info() != Eigen::Success || !Y.allFinite()) {
+    Eigen::MatrixXd Y;
+    if (!f.solve(B, Y)) {
       why = "the Cholesky solve failed";
       return false;
     }
@@ -99,6 +85,43 @@ bool direct(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, Eige
     return true;
   } catch (const std::bad_alloc&) {
     why = "not enough memory for the Cholesky factorization";
+    return false;
+  }
+}
+// The same with a factorization of its own (AMD ordering: see SpdFactorization).
+bool direct(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& X,
+            const SolverOptions& o, SolveReport& rep, std::string& why) {
+  SpdFactorization f;
+  return direct(f, A, B, X, o, rep, why);
+}
+
+bool same_pattern(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() && a.nonZeros() == b.nonZeros() &&
+         std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.outerSize() + 1, b.outerIndexPtr()) &&
+         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), b.innerIndexPtr());
+}
+
+// Conjugate gradients preconditioned by the two-grid cycle (reliefkit/base/multilevel.h).
+bool two_level(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& X,
+               const SolverOptions& o, SolveReport& rep, std::string& why) {
+  try {
+    report_progress(o, 0.05, o.label);
+    const TwoLevelPreconditioner cycle(A);
+    if (!cycle.ok()) {
+      why = "the coarse system of the two-level preconditioner could not be factorized";
+      return false;
+    }
+    report_progress(o, 0.2, o.label);
+    rep.iterations = preconditioned_cg(A, cycle, B, X, o.tolerance, std::max(1, o.max_iterations));
+    rep.residual = relative_residual(A, B, X);
+    if (rep.residual <= o.tolerance) return true;
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "two-level conjugate gradients stopped at %d iterations with a residual of %.1e",
+                  rep.iterations, rep.residual);
+    why = buf;
+    return false;
+  } catch (const std::bad_alloc&) {
+    why = "not enough memory for the two-level preconditioner";
     return false;
   }
 }
@@ -130,6 +153,17 @@ SolveReport solve_spd(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixX
   const bool direct_first = o.method == SolverMethod::Direct ||
                             (o.method == SolverMethod::Auto && o.prefer_direct && small_enough);
   std::string why;
+  const bool two_level_first = o.method == SolverMethod::TwoLevel || (o.method == SolverMethod::Auto && o.prefer_direct);
+  if (two_level_first) {
+    rep.method = "conjugate gradients, two-level preconditioner";
+    if (two_level(A, B, X, o, rep, why)) {
+      rep.converged = true;
+      report_progress(o, 1.0, o.label);
+      return rep;
+    }
+    rep.note = why;
+    X = guess;
+  }
   if (direct_first) {
     rep.method = "Cholesky (CHOLMOD)";
     if (direct(A, B, X, o, rep, why)) {
@@ -165,6 +199,74 @@ SolveReport solve_spd(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixX
       rep.residual = cg_residual;
       rep.note = std::string(buf) + "; " + why;
     }
+  }
+  report_progress(o, 1.0, o.label);
+  return rep;
+}
+
+struct SpdFactorization::Impl {
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
+  Eigen::SparseMatrix<double> factored;  // the matrix of the current factorization (compressed)
+  bool ordered = false, factored_ok = false;
+  int orderings = 0, factorizations = 0;
+};
+
+SpdFactorization::SpdFactorization(Ordering ordering) : impl_(std::make_unique<Impl>()) {
+  impl_->llt.cholmod().print = 0;  // CHOLMOD writes nothing to stdout; failures come back as info()
+  // AMD alone: CHOLMOD's default also tries METIS when AMD's fill is high, and on a 4 M-face mesh
+  // its nested dissection took 15 s to save little fill (33 s in all against 17 s with AMD).
+  if (ordering == Ordering::Amd) {
+    impl_->llt.cholmod().nmethods = 1;
+    impl_->llt.cholmod().method[0].ordering = CHOLMOD_AMD;
+  }
+}
+SpdFactorization::~SpdFactorization() = default;
+int SpdFactorization::orderings() const { return impl_->orderings; }
+int SpdFactorization::factorizations() const { return impl_->factorizations; }
+
+bool SpdFactorization::factorize(const Eigen::SparseMatrix<double>& A_in, std::string& why) {
+  Eigen::SparseMatrix<double> A = A_in;
+  A.makeCompressed();
+  Impl& m = *impl_;
+  const bool pattern_kept = m.ordered && same_pattern(A, m.factored);
+  if (pattern_kept && m.factored_ok && std::equal(A.valuePtr(), A.valuePtr() + A.nonZeros(), m.factored.valuePtr()))
+    return true;
+  if (!pattern_kept) {
+    m.llt.analyzePattern(A);
+    ++m.orderings;
+    m.ordered = m.llt.info() == Eigen::Success;
+    if (!m.ordered) {
+      m.factored_ok = false;
+      why = "the Cholesky ordering failed (not enough memory)";
+      return false;
+    }
+  }
+  m.llt.factorize(A);
+  ++m.factorizations;
+  m.factored = std::move(A);
+  m.factored_ok = m.llt.info() == Eigen::Success;
+  if (!m.factored_ok) why = "the Cholesky factorization failed (matrix not positive definite, or not enough memory)";
+  return m.factored_ok;
+}
+
+bool SpdFactorization::solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X) {
+  if (!impl_->factored_ok) return false;
+  X = impl_->llt.solve(B);
+  return impl_->llt.info() == Eigen::Success && X.allFinite();
+}
+
+SolveReport solve_spd(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& X,
+                      SpdFactorization& factorization, const SolverOptions& o) {
+  if (A.rows() != A.cols() || A.rows() != B.rows())
+    throw InputError("solve_spd: the matrix must be square and match the right-hand side");
+  SolveReport rep;
+  rep.method = "Cholesky (CHOLMOD)";
+  std::string why;
+  rep.converged = direct(factorization, A, B, X, o, rep, why);
+  if (!rep.converged) {
+    rep.note = why;
+    rep.residual = X.rows() == B.rows() && X.cols() == B.cols() ? relative_residual(A, B, X)
+                                                                : std::numeric_limits<double>::infinity();
   }
   report_progress(o, 1.0, o.label);
   return rep;

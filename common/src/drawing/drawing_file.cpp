@@ -14,7 +14,9 @@ using json = nlohmann::ordered_json;  // keys in the order written: id first
 
 const char* kFormat = "reliefkit-drawing-interpretation";
 
-const char* profile_name(CurveProfile p) { return p == CurveProfile::Ridge ? "ridge" : p == CurveProfile::Valley ? "valley" : "step"; }
+const char* profile_name(CurveProfile p) {
+  return p == CurveProfile::Ridge ? "ridge" : p == CurveProfile::Valley ? "valley" : "step";
+}
 
 json shape_json(const std::vector<Vec2>& shape) {
   json a = json::array();
@@ -22,7 +24,10 @@ json shape_json(const std::vector<Vec2>& shape) {
   return a;
 }
 
-json point(const Vec2& p) { return json::array({std::round(p.x() * 10) / 10, std::round(p.y() * 10) / 10}); }
+// A point rounded to 0.1 px.
+json point(const Vec2& p) {
+  return json::array({std::round(p.x() * 10) / 10, std::round(p.y() * 10) / 10});
+}
 
 }  // namespace
 
@@ -102,6 +107,80 @@ std::vector<CurveOverride> overrides_from_json(const std::string& text, const Dr
 }
 
 namespace {
+// A profile ("profile" and its optional "shape") into `sp`; true when it is not the plain step.
+bool read_span(const json& x, int id, ProfileSpan& sp) {
+  const std::string prof = x.value("profile", "step");
+  if (prof == "ridge")
+    sp.profile = CurveProfile::Ridge;
+  else if (prof == "valley")
+    sp.profile = CurveProfile::Valley;
+  else if (prof != "step")
+    throw InputError("Curve " + std::to_string(id) + ": profile \"" + prof + "\" is not one of step, ridge, valley.");
+  if (x.contains("shape")) {
+    if (!x["shape"].is_array() || x["shape"].size() < 2)
+      throw InputError("Curve " + std::to_string(id) + ": a shape is a list of at least two [t, value] pairs.");
+    for (const json& q : x["shape"]) {
+      if (!q.is_array() || q.size() != 2 || !q[0].is_number() || !q[1].is_number())
+        throw InputError("Curve " + std::to_string(id) + ": a shape is a list of [t, value] pairs of numbers.");
+      sp.shape.push_back(Vec2(q[0].get<double>(), q[1].get<double>()));
+    }
+  }
+  return prof != "step" || !sp.shape.empty();
+}
+
+// The curve id of an entry, checked against the drawing: known, and the same curve (its end points
+// within 2 px of what this extraction found).
+int entry_curve(const json& e, const DrawingCurves& dc) {
+  if (!e.is_object() || !e.contains("id") || !e["id"].is_number_integer())
+    throw InputError("The interpretation file has a curve entry without a whole-number \"id\".");
+  const int id = e["id"].get<int>(), nc = int(dc.curves.size());
+  if (id < 0 || id >= nc)
+    throw InputError("The interpretation file names curve " + std::to_string(id) + ", but this drawing has curves 0 to " +
+                     std::to_string(nc - 1) + ". Was it written with other line-detection parameters?");
+  auto near = [](const json& a, const Vec2& p) {
+    return a.is_array() && a.size() == 2 && a[0].is_number() && a[1].is_number() &&
+           std::hypot(a[0].get<double>() - p.x(), a[1].get<double>() - p.y()) <= 2.0;
+  };
+  if (e.contains("start") && !(near(e["start"], dc.curves[size_t(id)].front()) && near(e["end"], dc.curves[size_t(id)].back())))
+    throw InputError("Curve " + std::to_string(id) +
+                     " of the interpretation file does not match this drawing's curve " + std::to_string(id) +
+                     " (its end points differ): the file was written for another drawing or other line-detection parameters.");
+  return id;
+}
+
+// One curve entry; false when it asks for nothing beyond the automatic interpretation.
+bool read_override(const json& e, const DrawingCurves& dc, CurveOverride& o) {
+  const int id = o.curve = entry_curve(e, dc);
+  const std::string dir = e.value("direction", "auto");
+  if (dir == "left-lower")
+    o.direction = CurveOverride::Direction::LeftLower;
+  else if (dir == "right-lower")
+    o.direction = CurveOverride::Direction::RightLower;
+  else if (dir != "auto")
+    throw InputError("Curve " + std::to_string(id) + ": direction \"" + dir + "\" is not one of auto, left-lower, right-lower.");
+  if (e.contains("weight")) {
+    if (!e["weight"].is_number_integer()) throw InputError("Curve " + std::to_string(id) + ": the weight must be a whole number.");
+    o.weight = e["weight"].get<int>();
+  }
+  // Profiles: "profile" (+ "shape") for the whole curve, or "spans" of several.
+  bool custom = false;
+  if (e.contains("spans")) {
+    if (!e["spans"].is_array()) throw InputError("Curve " + std::to_string(id) + ": \"spans\" must be a list.");
+    for (const json& x : e["spans"]) {
+      ProfileSpan sp;
+      read_span(x, id, sp);
+      sp.from = x.value("from", 0.0);
+      sp.to = x.value("to", 1.0);
+      o.spans.push_back(sp);
+    }
+    custom = !o.spans.empty();
+  } else {
+    ProfileSpan sp;
+    if (read_span(e, id, sp)) o.spans.push_back(sp), custom = true;
+  }
+  return o.direction != CurveOverride::Direction::Auto || o.weight != 0 || custom;
+}
+
 std::vector<CurveOverride> read_overrides(const std::string& text, const DrawingCurves& dc) {
   json j;
   try {
@@ -112,73 +191,10 @@ std::vector<CurveOverride> read_overrides(const std::string& text, const Drawing
   if (!j.is_object() || j.value("format", "") != kFormat || !j.contains("curves") || !j["curves"].is_array())
     throw InputError("The interpretation file is not a ReliefKit drawing interpretation (its \"format\" must be \"" +
                      std::string(kFormat) + "\" and it must list \"curves\").");
-  const int nc = int(dc.curves.size());
   std::vector<CurveOverride> out;
   for (const json& e : j["curves"]) {
-    if (!e.is_object() || !e.contains("id") || !e["id"].is_number_integer())
-      throw InputError("The interpretation file has a curve entry without a whole-number \"id\".");
-    const int id = e["id"].get<int>();
-    if (id < 0 || id >= nc)
-      throw InputError("The interpretation file names curve " + std::to_string(id) + ", but this drawing has curves 0 to " +
-                       std::to_string(nc - 1) + ". Was it written with other line-detection parameters?");
-    // The same curve? Its end points must match what this extraction found (within 2 px).
-    auto near = [](const json& a, const Vec2& p) {
-      return a.is_array() && a.size() == 2 && a[0].is_number() && a[1].is_number() &&
-             std::hypot(a[0].get<double>() - p.x(), a[1].get<double>() - p.y()) <= 2.0;
-    };
-    if (e.contains("start") && !(near(e["start"], dc.curves[size_t(id)].front()) && near(e["end"], dc.curves[size_t(id)].back())))
-      throw InputError("Curve " + std::to_string(id) +
-                       " of the interpretation file does not match this drawing's curve " + std::to_string(id) +
-                       " (its end points differ): the file was written for another drawing or other line-detection parameters.");
     CurveOverride o;
-    o.curve = id;
-    const std::string dir = e.value("direction", "auto");
-    if (dir == "left-lower")
-      o.direction = CurveOverride::Direction::LeftLower;
-    else if (dir == "right-lower")
-      o.direction = CurveOverride::Direction::RightLower;
-    else if (dir != "auto")
-      throw InputError("Curve " + std::to_string(id) + ": direction \"" + dir + "\" is not one of auto, left-lower, right-lower.");
-    if (e.contains("weight")) {
-      if (!e["weight"].is_number_integer()) throw InputError("Curve " + std::to_string(id) + ": the weight must be a whole number.");
-      o.weight = e["weight"].get<int>();
-    }
-    // Profiles: "profile" (+ "shape") for the whole curve, or "spans" of several.
-    auto read_span = [&](const json& x, ProfileSpan& sp) {
-      const std::string prof = x.value("profile", "step");
-      if (prof == "ridge")
-        sp.profile = CurveProfile::Ridge;
-      else if (prof == "valley")
-        sp.profile = CurveProfile::Valley;
-      else if (prof != "step")
-        throw InputError("Curve " + std::to_string(id) + ": profile \"" + prof + "\" is not one of step, ridge, valley.");
-      if (x.contains("shape")) {
-        if (!x["shape"].is_array() || x["shape"].size() < 2)
-          throw InputError("Curve " + std::to_string(id) + ": a shape is a list of at least two [t, value] pairs.");
-        for (const json& q : x["shape"]) {
-          if (!q.is_array() || q.size() != 2 || !q[0].is_number() || !q[1].is_number())
-            throw InputError("Curve " + std::to_string(id) + ": a shape is a list of [t, value] pairs of numbers.");
-          sp.shape.push_back(Vec2(q[0].get<double>(), q[1].get<double>()));
-        }
-      }
-      return prof != "step" || !sp.shape.empty();
-    };
-    bool custom = false;
-    if (e.contains("spans")) {
-      if (!e["spans"].is_array()) throw InputError("Curve " + std::to_string(id) + ": \"spans\" must be a list.");
-      for (const json& x : e["spans"]) {
-        ProfileSpan sp;
-        read_span(x, sp);
-        sp.from = x.value("from", 0.0);
-        sp.to = x.value("to", 1.0);
-        o.spans.push_back(sp);
-      }
-      custom = !o.spans.empty();
-    } else {
-      ProfileSpan sp;
-      if (read_span(e, sp)) o.spans.push_back(sp), custom = true;
-    }
-    if (o.direction != CurveOverride::Direction::Auto || o.weight != 0 || custom) out.push_back(o);
+    if (read_override(e, dc, o)) out.push_back(o);
   }
   return out;
 }

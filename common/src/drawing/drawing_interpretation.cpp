@@ -43,147 +43,171 @@ bool CurveOverride::is_step() const {
   return false;
 }
 
-DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const InterpretationParams& p) {
-  p.validate();
-  const int nc = static_cast<int>(dc.curves.size());
-  DrawingInterpretation out;
+namespace {
+
+// A user override checked against the drawing: a known curve, named once, a sane weight and spans.
+void check_override(const CurveOverride& f, int nc, std::vector<char>& seen) {
+  if (f.curve < 0 || f.curve >= nc)
+    throw InputError("The interpretation names curve " + std::to_string(f.curve) + ", but the drawing has curves 0 to " +
+                     std::to_string(nc - 1) + ".");
+  if (seen[size_t(f.curve)]++) throw InputError("The interpretation names curve " + std::to_string(f.curve) + " twice.");
+  if (f.weight < 0 || f.weight > 1000)
+    throw InputError("The interpretation gives curve " + std::to_string(f.curve) + " the weight " + std::to_string(f.weight) +
+                     "; weights are whole numbers from 0 (automatic) to 1000.");
+  for (const ProfileSpan& sp : f.spans) {
+    if (!(sp.from >= 0 && sp.to <= 1 && sp.from < sp.to))
+      throw InputError("The interpretation gives curve " + std::to_string(f.curve) +
+                       " a profile span that is not within 0 to 1 (from < to).");
+    for (size_t i = 0; i < sp.shape.size(); ++i)
+      if (!std::isfinite(sp.shape[i].x()) || !std::isfinite(sp.shape[i].y()) || sp.shape[i].x() < -1 || sp.shape[i].x() > 1 ||
+          (i > 0 && !(sp.shape[i].x() > sp.shape[i - 1].x())))
+        throw InputError("The interpretation gives curve " + std::to_string(f.curve) +
+                         " a free-form shape whose t values are not increasing within -1 to 1.");
+  }
+}
+
+// The overrides' profiles, steps and weights into `out`; their directions per curve.
+std::vector<CurveOverride::Direction> apply_overrides(const std::vector<CurveOverride>& overrides, int nc,
+                                                      DrawingInterpretation& out) {
   out.profiles.assign(size_t(nc), {});
   out.is_step.assign(size_t(nc), 1);
   out.weight.assign(size_t(nc), 0);
   std::vector<CurveOverride::Direction> direction(size_t(nc), CurveOverride::Direction::Auto);
   std::vector<char> seen(size_t(nc), 0);
-  for (const auto& f : p.overrides) {
-    if (f.curve < 0 || f.curve >= nc)
-      throw InputError("The interpretation names curve " + std::to_string(f.curve) + ", but the drawing has curves 0 to " +
-                       std::to_string(nc - 1) + ".");
-    if (seen[size_t(f.curve)]++) throw InputError("The interpretation names curve " + std::to_string(f.curve) + " twice.");
-    if (f.weight < 0 || f.weight > 1000)
-      throw InputError("The interpretation gives curve " + std::to_string(f.curve) + " the weight " + std::to_string(f.weight) +
-                       "; weights are whole numbers from 0 (automatic) to 1000.");
-    for (const ProfileSpan& sp : f.spans) {
-      if (!(sp.from >= 0 && sp.to <= 1 && sp.from < sp.to))
-        throw InputError("The interpretation gives curve " + std::to_string(f.curve) +
-                         " a profile span that is not within 0 to 1 (from < to).");
-      for (size_t i = 0; i < sp.shape.size(); ++i)
-        if (!std::isfinite(sp.shape[i].x()) || !std::isfinite(sp.shape[i].y()) || sp.shape[i].x() < -1 || sp.shape[i].x() > 1 ||
-            (i > 0 && !(sp.shape[i].x() > sp.shape[i - 1].x())))
-          throw InputError("The interpretation gives curve " + std::to_string(f.curve) +
-                           " a free-form shape whose t values are not increasing within -1 to 1.");
-    }
+  for (const auto& f : overrides) {
+    check_override(f, nc, seen);
     out.profiles[size_t(f.curve)] = f.spans;
     out.is_step[size_t(f.curve)] = f.is_step();
     out.weight[size_t(f.curve)] = f.weight;
     direction[size_t(f.curve)] = f.direction;
   }
-  if (dc.width <= 0 || dc.height <= 0) return out;
-  // Regions: the image minus the curves (drawn 2 px wide), 4-connected.
+  return direction;
+}
+
+// The curves drawn 2 px wide. Line detection fades where curves meet (a junction's profile is no
+// line's): each end is extended along its direction by `gap_close`, so that touching shapes close
+// their regions.
+cv::Mat curve_ink(const DrawingCurves& dc, double gap_close) {
   cv::Mat ink(dc.height, dc.width, CV_8U, cv::Scalar(0));
+  auto pixel = [](const Vec2& q) { return cv::Point(int(std::lround(q.x())), int(std::lround(q.y()))); };
   for (const auto& c : dc.curves) {
     std::vector<cv::Point> pts;
-    for (const auto& q : c) pts.emplace_back(int(std::lround(q.x())), int(std::lround(q.y())));
+    for (const auto& q : c) pts.push_back(pixel(q));
     cv::polylines(ink, pts, false, cv::Scalar(255), 2, cv::LINE_8);
-    // Line detection fades where curves meet (a junction's profile is no line's): each end is
-    // extended along its direction, so that touching shapes close their regions.
-    if (c.size() >= 2 && p.gap_close > 0)
-      for (int e = 0; e < 2; ++e) {
-        const Vec2 a = e ? c[c.size() - 1] : c[0];
-        const Vec2 b = e ? c[std::max<size_t>(0, c.size() >= 4 ? c.size() - 4 : 0)] : c[std::min<size_t>(3, c.size() - 1)];
-        Vec2 d = a - b;
-        if (!(d.norm() > 0)) continue;
-        d.normalize();
-        const Vec2 z = a + p.gap_close * d;
-        cv::line(ink, cv::Point(int(std::lround(a.x())), int(std::lround(a.y()))),
-                 cv::Point(int(std::lround(z.x())), int(std::lround(z.y()))), cv::Scalar(255), 2, cv::LINE_8);
+    if (c.size() < 2 || !(gap_close > 0)) continue;
+    for (int e = 0; e < 2; ++e) {
+      const Vec2 a = e ? c[c.size() - 1] : c[0];
+      const Vec2 b = e ? c[std::max<size_t>(0, c.size() >= 4 ? c.size() - 4 : 0)] : c[std::min<size_t>(3, c.size() - 1)];
+      Vec2 d = a - b;
+      if (!(d.norm() > 0)) continue;
+      d.normalize();
+      cv::line(ink, pixel(a), pixel(a + gap_close * d), cv::Scalar(255), 2, cv::LINE_8);
+    }
+  }
+  return ink;
+}
+
+// Per region: its area, whether it touches the image's border (the paper around the object), and
+// whether it is a speck (between dots of stippling or strokes of hatching: shading, not relief).
+struct RegionStats {
+  std::vector<long> area;
+  std::vector<char> border, small;
+};
+
+RegionStats region_stats(const cv::Mat& labels, int nr, double min_area) {
+  RegionStats s{std::vector<long>(size_t(nr), 0), std::vector<char>(size_t(nr), 0), std::vector<char>(size_t(nr), 0)};
+  for (int y = 0; y < labels.rows; ++y) {
+    const int* row = labels.ptr<int>(y);
+    for (int x = 0; x < labels.cols; ++x)
+      if (row[x] >= 0) {
+        ++s.area[size_t(row[x])];
+        if (x == 0 || y == 0 || x == labels.cols - 1 || y == labels.rows - 1) s.border[size_t(row[x])] = 1;
       }
   }
-  cv::Mat free = ink == 0, labels;
-  const int n = cv::connectedComponents(free, labels, 4, CV_32S);
-  labels -= 1;  // the curves' label 0 becomes -1; regions 0 .. n-2
-  out.regions = labels;
-  out.region_count = std::max(0, n - 1);
-  // Region areas, and which regions touch the image's border (the paper around the object).
-  const int nr = out.region_count;
-  std::vector<char> small(size_t(nr), 0), border(size_t(nr), 0);
-  std::vector<long> area(size_t(nr), 0);
-  {
-    for (int y = 0; y < labels.rows; ++y) {
-      const int* row = labels.ptr<int>(y);
-      for (int x = 0; x < labels.cols; ++x)
-        if (row[x] >= 0) {
-          ++area[size_t(row[x])];
-          if (x == 0 || y == 0 || x == labels.cols - 1 || y == labels.rows - 1) border[size_t(row[x])] = 1;
-        }
-    }
-    // Specks between dots of stippling or strokes of hatching are shading, not parts of the relief.
-    for (int r = 0; r < nr; ++r) small[size_t(r)] = area[size_t(r)] < p.min_region_area;
-  }
+  for (int r = 0; r < nr; ++r) s.small[size_t(r)] = s.area[size_t(r)] < min_area;
+  return s;
+}
 
-  // Each curve's sides, by samples at `margin` beside it: the pair (left, right) most samples see,
-  // and every pair enough samples see (a curve running past a junction has other regions beside
-  // it along part of its length: each such pair is a step of its own in the graph).
-  out.sides.assign(size_t(nc), {-1, -1});
-  std::vector<std::vector<std::array<int, 2>>> pairs(static_cast<size_t>(nc));
-  for (int k = 0; k < nc; ++k) {
-    const auto& c = dc.curves[size_t(k)];
-    std::map<std::array<int, 2>, int> votes;
-    int samples = 0;
-    for (size_t i = 0; i + 1 < c.size(); ++i) {
-      Vec2 d = c[i + 1] - c[i];
-      const double len = d.norm();
-      if (!(len > 0)) continue;
-      d /= len;
-      const Vec2 l(d.y(), -d.x());  // left of the direction of travel, y down
-      const Vec2 m = 0.5 * (c[i] + c[i + 1]);
-      ++votes[{region_at(labels, m + p.margin * l), region_at(labels, m - p.margin * l)}];
-      ++samples;
-    }
-    int best = 0;
-    for (const auto& [pr, n] : votes) {
-      const bool ok = pr[0] >= 0 && pr[1] >= 0 && pr[0] != pr[1] && !small[size_t(pr[0])] && !small[size_t(pr[1])];
-      if (!ok) continue;
-      if (n > best) best = n, out.sides[size_t(k)] = pr;
-      if (n >= std::max(kMinPairSamples, samples / 10)) pairs[size_t(k)].push_back(pr);
-    }
-    if (best > 0 && pairs[size_t(k)].empty()) pairs[size_t(k)].push_back(out.sides[size_t(k)]);
+// A curve's sides, by samples at `margin` beside it: the pair (left, right) most samples see
+// (`sides`), and every pair enough samples see (returned: a curve running past a junction has
+// other regions beside it along part of its length; each such pair is a step of its own).
+std::vector<std::array<int, 2>> curve_sides(const std::vector<Vec2>& c, const cv::Mat& labels, const RegionStats& st,
+                                            double margin, std::array<int, 2>& sides) {
+  std::map<std::array<int, 2>, int> votes;
+  int samples = 0;
+  for (size_t i = 0; i + 1 < c.size(); ++i) {
+    Vec2 d = c[i + 1] - c[i];
+    const double len = d.norm();
+    if (!(len > 0)) continue;
+    d /= len;
+    const Vec2 l(d.y(), -d.x());  // left of the direction of travel, y down
+    const Vec2 m = 0.5 * (c[i] + c[i + 1]);
+    ++votes[{region_at(labels, m + margin * l), region_at(labels, m - margin * l)}];
+    ++samples;
   }
+  std::vector<std::array<int, 2>> pairs;
+  int best = 0;
+  for (const auto& [pr, n] : votes) {
+    const bool ok = pr[0] >= 0 && pr[1] >= 0 && pr[0] != pr[1] && !st.small[size_t(pr[0])] && !st.small[size_t(pr[1])];
+    if (!ok) continue;
+    if (n > best) best = n, sides = pr;
+    if (n >= std::max(kMinPairSamples, samples / 10)) pairs.push_back(pr);
+  }
+  if (best > 0 && pairs.empty()) pairs.push_back(sides);
+  return pairs;
+}
 
-  // Ridges and valleys leave both their sides at one height: their sides are one node.
-  std::vector<int> node(static_cast<size_t>(nr));
-  std::iota(node.begin(), node.end(), 0);
-  auto find = [&](int r) {
+// The graph of sect. 7.3: nodes are regions (the two sides of a ridge or valley merged into one),
+// edges the steps between them with their least height, and the directions the user fixed.
+struct RegionGraph {
+  std::vector<int> node;                // union-find: region -> its node
+  std::vector<std::map<int, int>> adj;  // node -> (node -> least step)
+  std::vector<std::vector<int>> lower_than;  // fixed: node -> nodes that must be above it
+  std::vector<int> fixed_in;            // fixed directions pointing up into each node
+  int find(int r) {
     while (node[size_t(r)] != r) r = node[size_t(r)] = node[size_t(node[size_t(r)])];
     return r;
-  };
-  for (int k = 0; k < nc; ++k)
+  }
+};
+
+RegionGraph region_graph(int nr, const std::vector<std::vector<std::array<int, 2>>>& pairs,
+                         const std::vector<CurveOverride::Direction>& direction, DrawingInterpretation& out) {
+  RegionGraph g{std::vector<int>(size_t(nr)), std::vector<std::map<int, int>>(size_t(nr)),
+                std::vector<std::vector<int>>(size_t(nr)), std::vector<int>(size_t(nr), 0)};
+  std::iota(g.node.begin(), g.node.end(), 0);
+  const int nc = int(pairs.size());
+  for (int k = 0; k < nc; ++k)  // ridges and valleys leave both their sides at one height
     if (!out.is_step[size_t(k)])
-      for (const auto& pr : pairs[size_t(k)]) node[size_t(find(pr[0]))] = find(pr[1]);
-  // The graph: nodes, steps between two different nodes (neither of them a speck), each step at
-  // least its weight; a fixed direction holds for every pair of sides of its curve.
-  std::vector<std::map<int, int>> adj(static_cast<size_t>(nr));  // node -> (node -> least step)
-  std::vector<std::vector<int>> lower_than(static_cast<size_t>(nr));  // fixed: node -> nodes that must be above it
-  std::vector<int> fixed_in(size_t(nr), 0);
+      for (const auto& pr : pairs[size_t(k)]) g.node[size_t(g.find(pr[0]))] = g.find(pr[1]);
   for (int k = 0; k < nc; ++k) {
     if (pairs[size_t(k)].empty()) {
       ++out.ignored_curves;
       continue;
     }
     if (!out.is_step[size_t(k)]) continue;
-    for (const auto& pr : pairs[size_t(k)]) {
-      const int a = find(pr[0]), b = find(pr[1]), w = std::max(1, out.weight[size_t(k)]);
+    for (const auto& pr : pairs[size_t(k)]) {  // a fixed direction holds for every pair of sides
+      const int a = g.find(pr[0]), b = g.find(pr[1]), w = std::max(1, out.weight[size_t(k)]);
       if (a == b) continue;
-      int& ab = adj[size_t(a)][b];
+      int& ab = g.adj[size_t(a)][b];
       ab = std::max(ab, w);
-      int& ba = adj[size_t(b)][a];
+      int& ba = g.adj[size_t(b)][a];
       ba = std::max(ba, w);
-      if (direction[size_t(k)] != CurveOverride::Direction::Auto) {
-        const bool left_lower = direction[size_t(k)] == CurveOverride::Direction::LeftLower;
-        const int lo = left_lower ? a : b, hi = left_lower ? b : a;
-        lower_than[size_t(lo)].push_back(hi);
-        ++fixed_in[size_t(hi)];
-      }
+      if (direction[size_t(k)] == CurveOverride::Direction::Auto) continue;
+      const bool left_lower = direction[size_t(k)] == CurveOverride::Direction::LeftLower;
+      g.lower_than[size_t(left_lower ? a : b)].push_back(left_lower ? b : a);
+      ++g.fixed_in[size_t(left_lower ? b : a)];
     }
   }
-  // Base: among the regions no fixed direction puts above another, the one bordering most curves.
+  return g;
+}
+
+// The bases (into out.base_regions) and each node's breadth-first distance from them: the paper
+// around the drawn object first (unless the user asks for the thesis' heuristic alone), then per
+// connected part of the graph the thesis' base: among the regions no fixed direction puts above
+// another, the one bordering most curves.
+std::vector<int> distances_from_bases(const RegionGraph& g, const RegionStats& st, bool paper_is_base,
+                                      DrawingInterpretation& out) {
+  const int nr = int(g.adj.size());
   std::vector<int> dist(size_t(nr), -1);
   std::deque<int> q;
   auto start_from = [&](int r) {
@@ -194,32 +218,35 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
     while (!q.empty()) {
       const int u = q.front();
       q.pop_front();
-      for (const auto& [v, w] : adj[size_t(u)])
+      for (const auto& [v, w] : g.adj[size_t(u)])
         if (dist[size_t(v)] < 0) dist[size_t(v)] = dist[size_t(u)] + 1, q.push_back(v);
     }
   };
-  // The paper around the drawn object is the ground the relief stands on (unless the user asks for
-  // the thesis' heuristic alone); then, per connected part of the graph, the thesis' base.
-  if (p.paper_is_base)
+  if (paper_is_base)
     for (int r = 0; r < nr; ++r)
-      if (border[size_t(r)] && !small[size_t(r)] && fixed_in[size_t(r)] == 0 && !adj[size_t(r)].empty()) start_from(r);
-  for (;;) {  // one base per connected part of the graph
+      if (st.border[size_t(r)] && !st.small[size_t(r)] && g.fixed_in[size_t(r)] == 0 && !g.adj[size_t(r)].empty()) start_from(r);
+  for (;;) {
     int best = -1;
     for (int r = 0; r < nr; ++r)
-      if (dist[size_t(r)] < 0 && !adj[size_t(r)].empty() && fixed_in[size_t(r)] == 0 &&
-          (best < 0 || adj[size_t(r)].size() > adj[size_t(best)].size()))
+      if (dist[size_t(r)] < 0 && !g.adj[size_t(r)].empty() && g.fixed_in[size_t(r)] == 0 &&
+          (best < 0 || g.adj[size_t(r)].size() > g.adj[size_t(best)].size()))
         best = r;
     if (best < 0) {
       for (int r = 0; r < nr; ++r)
-        if (dist[size_t(r)] < 0 && !adj[size_t(r)].empty()) best = r;
+        if (dist[size_t(r)] < 0 && !g.adj[size_t(r)].empty()) best = r;
       if (best < 0) break;
     }
     start_from(best);
   }
-  // A total order respecting the fixed directions (Kahn): nearest the base first; among regions as
-  // near, the larger first, so that where two neighbours are as near the ground (a tool's body and
-  // the small platform drawn at its top) the small one is the detail standing on the large one.
-  std::vector<int> order, rank(size_t(nr), -1), in = fixed_in;
+  return dist;
+}
+
+// A total order respecting the fixed directions (Kahn): nearest the base first; among regions as
+// near, the larger first, so that where two neighbours are as near the ground (a tool's body and
+// the small platform drawn at its top) the small one is the detail standing on the large one.
+std::vector<int> region_order(const RegionGraph& g, const std::vector<int>& dist, const std::vector<long>& area) {
+  const int nr = int(g.adj.size());
+  std::vector<int> order, in = g.fixed_in;
   using Item = std::tuple<int, long, int>;  // (distance from the base, -area, region)
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> ready;
   auto item = [&](int r) { return Item{std::max(0, dist[size_t(r)]), -area[size_t(r)], r}; };
@@ -228,36 +255,67 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
   while (!ready.empty()) {
     const int u = std::get<2>(ready.top());
     ready.pop();
-    rank[size_t(u)] = int(order.size());
     order.push_back(u);
-    for (int v : lower_than[size_t(u)])
+    for (int v : g.lower_than[size_t(u)])
       if (--in[size_t(v)] == 0) ready.push(item(v));
   }
   if (int(order.size()) < nr)
     throw InputError("The fixed step directions contradict each other: following them leads round a loop back to "
                      "a region below itself. Check the directions given in the interpretation file.");
-  // Levels: the longest chain of steps below each node, every step going up the order.
-  std::vector<int> level(size_t(nr), 0);
+  return order;
+}
+
+// Levels: the longest chain of steps below each node, every step going up the order. A node below
+// all its neighbours that is not a base (one the user sank, say) sits as high as its steps allow:
+// one step below its lowest neighbour, not down on the ground.
+std::vector<int> node_levels(const RegionGraph& g, const std::vector<int>& order, const std::vector<int>& bases) {
+  const int nr = int(g.adj.size());
+  std::vector<int> rank(size_t(nr), -1), level(size_t(nr), 0);
+  for (size_t i = 0; i < order.size(); ++i) rank[size_t(order[i])] = int(i);
   for (int u : order)
-    for (const auto& [v, w] : adj[size_t(u)])
+    for (const auto& [v, w] : g.adj[size_t(u)])
       if (rank[size_t(v)] > rank[size_t(u)]) level[size_t(v)] = std::max(level[size_t(v)], level[size_t(u)] + w);
-  // A region below all its neighbours that is not a base (one the user sank, say) sits as high as
-  // its steps allow: one step below its lowest neighbour, not down on the ground.
   std::vector<char> is_base(size_t(nr), 0);
-  for (int b : out.base_regions) is_base[size_t(b)] = 1;
+  for (int b : bases) is_base[size_t(b)] = 1;
   for (auto it = order.rbegin(); it != order.rend(); ++it) {
     const int u = *it;
-    if (is_base[size_t(u)] || adj[size_t(u)].empty()) continue;
+    if (is_base[size_t(u)] || g.adj[size_t(u)].empty()) continue;
     int up = std::numeric_limits<int>::max();
     bool source = true;
-    for (const auto& [v, w] : adj[size_t(u)]) {
+    for (const auto& [v, w] : g.adj[size_t(u)]) {
       if (rank[size_t(v)] < rank[size_t(u)]) source = false;
       up = std::min(up, level[size_t(v)] - w);
     }
     if (source && up > level[size_t(u)]) level[size_t(u)] = up;
   }
+  return level;
+}
+
+}  // namespace
+
+DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const InterpretationParams& p) {
+  p.validate();
+  const int nc = static_cast<int>(dc.curves.size());
+  DrawingInterpretation out;
+  const auto direction = apply_overrides(p.overrides, nc, out);
+  if (dc.width <= 0 || dc.height <= 0) return out;
+  // Regions: the image minus the curves, 4-connected.
+  cv::Mat free = curve_ink(dc, p.gap_close) == 0, labels;
+  const int n = cv::connectedComponents(free, labels, 4, CV_32S);
+  labels -= 1;  // the curves' label 0 becomes -1; regions 0 .. n-2
+  out.regions = labels;
+  out.region_count = std::max(0, n - 1);
+  const int nr = out.region_count;
+  const RegionStats st = region_stats(labels, nr, p.min_region_area);
+  out.sides.assign(size_t(nc), {-1, -1});
+  std::vector<std::vector<std::array<int, 2>>> pairs(static_cast<size_t>(nc));
+  for (int k = 0; k < nc; ++k) pairs[size_t(k)] = curve_sides(dc.curves[size_t(k)], labels, st, p.margin, out.sides[size_t(k)]);
+  RegionGraph g = region_graph(nr, pairs, direction, out);
+  const std::vector<int> dist = distances_from_bases(g, st, p.paper_is_base, out);
+  const std::vector<int> order = region_order(g, dist, st.area);
+  const std::vector<int> level = node_levels(g, order, out.base_regions);
   out.region_height.assign(size_t(nr), 0);
-  for (int r = 0; r < nr; ++r) out.region_height[size_t(r)] = level[size_t(find(r))];
+  for (int r = 0; r < nr; ++r) out.region_height[size_t(r)] = level[size_t(g.find(r))];
   out.step.assign(size_t(nc), 0);
   for (int k = 0; k < nc; ++k) {
     const auto [a, b] = out.sides[size_t(k)];

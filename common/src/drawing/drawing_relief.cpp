@@ -11,6 +11,7 @@
 #include "reliefkit/base/curvature.h"
 #include "reliefkit/base/laplacian.h"
 #include "reliefkit/base/scale.h"
+#include "reliefkit/base/surface.h"
 
 namespace reliefkit {
 
@@ -159,218 +160,298 @@ SolveReport solve_free(const Eigen::SparseMatrix<double>& K, const Eigen::Vector
 
 }  // namespace
 
-DrawingRelief reconstruct_drawing_relief(const TriMesh& base, const DrawingCurves& dc, const DrawingInterpretation& di,
-                                         const DrawingReliefParams& p, const std::vector<Vec2>* pixel_of_vertex) {
-  p.validate();
-  require_triangles(base);
-  const int nv = base.n_vertices();
-  if (pixel_of_vertex && int(pixel_of_vertex->size()) != nv)
-    throw InputError("reconstruct_drawing_relief: one pixel position per base vertex is needed.");
-  DrawingRelief out;
-  out.height.assign(size_t(nv), 0);
-  out.in_margin.assign(size_t(nv), 0);
-  const int nc = int(dc.curves.size());
-  // Every segment of every curve, numbered; per segment its curve and arc-length fraction.
-  std::vector<int> seg_curve;
-  std::vector<float> seg_from, seg_to;
-  std::vector<Vec2> seg_dir;
-  for (int k = 0; k < nc; ++k) {
+namespace {
+
+// Every segment of every curve, numbered: its curve, arc-length fractions and direction.
+struct CurveSegments {
+  std::vector<int> curve;
+  std::vector<float> from, to;
+  std::vector<Vec2> dir;
+};
+
+CurveSegments curve_segments(const DrawingCurves& dc) {
+  CurveSegments s;
+  for (int k = 0; k < int(dc.curves.size()); ++k) {
     const auto& c = dc.curves[size_t(k)];
     double total = 0;
     for (size_t i = 1; i < c.size(); ++i) total += (c[i] - c[i - 1]).norm();
     double run = 0;
     for (size_t i = 1; i < c.size(); ++i) {
       const double len = (c[i] - c[i - 1]).norm();
-      seg_curve.push_back(k);
-      seg_from.push_back(float(total > 0 ? run / total : 0));
+      s.curve.push_back(k);
+      s.from.push_back(float(total > 0 ? run / total : 0));
       run += len;
-      seg_to.push_back(float(total > 0 ? run / total : 1));
-      seg_dir.push_back(len > 0 ? Vec2((c[i] - c[i - 1]) / len) : Vec2(1, 0));
+      s.to.push_back(float(total > 0 ? run / total : 1));
+      s.dir.push_back(len > 0 ? Vec2((c[i] - c[i - 1]) / len) : Vec2(1, 0));
     }
   }
-  // Nearest segment and distance per pixel: distance transform of the curves' pixels, each pixel's
-  // nearest ink pixel's segment.
+  return s;
+}
+
+// Per pixel: the distance to the nearest curve pixel, that pixel and its segment.
+struct NearestInk {
+  cv::Mat dist, label;                   // distance; label of the nearest ink pixel (1..n)
+  std::vector<int> segment_of_label;     // per label
+  std::vector<cv::Point> pixel_of_label;
+};
+
+NearestInk nearest_ink(const DrawingCurves& dc) {
   cv::Mat seg_of(dc.height, dc.width, CV_32S, cv::Scalar(-1)), ink(dc.height, dc.width, CV_8U, cv::Scalar(255));
-  {
-    int sid = 0;
-    for (int k = 0; k < nc; ++k) {
-      const auto& c = dc.curves[size_t(k)];
-      for (size_t i = 1; i < c.size(); ++i, ++sid) {
-        const cv::Point a(int(std::lround(c[i - 1].x())), int(std::lround(c[i - 1].y()))),
-            b(int(std::lround(c[i].x())), int(std::lround(c[i].y())));
-        cv::line(seg_of, a, b, cv::Scalar(sid), 1, cv::LINE_8);
-        cv::line(ink, a, b, cv::Scalar(0), 1, cv::LINE_8);
-      }
+  int sid = 0;
+  for (const auto& c : dc.curves)
+    for (size_t i = 1; i < c.size(); ++i, ++sid) {
+      const cv::Point a(int(std::lround(c[i - 1].x())), int(std::lround(c[i - 1].y()))),
+          b(int(std::lround(c[i].x())), int(std::lround(c[i].y())));
+      cv::line(seg_of, a, b, cv::Scalar(sid), 1, cv::LINE_8);
+      cv::line(ink, a, b, cv::Scalar(0), 1, cv::LINE_8);
     }
-  }
-  cv::Mat dist, label;
-  cv::distanceTransform(ink, dist, label, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
+  NearestInk n;
+  cv::distanceTransform(ink, n.dist, n.label, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
   // DIST_LABEL_PIXEL numbers the ink pixels 1..n: one entry per ink pixel, not per image pixel.
   const size_t n_ink = size_t(dc.width) * dc.height - size_t(cv::countNonZero(ink));
-  std::vector<int> seg_of_label(n_ink + 1, -1);
-  std::vector<cv::Point> pixel_of_label(n_ink + 1);
+  n.segment_of_label.assign(n_ink + 1, -1);
+  n.pixel_of_label.resize(n_ink + 1);
   for (int y = 0; y < dc.height; ++y)
     for (int x = 0; x < dc.width; ++x)
       if (ink.at<uchar>(y, x) == 0) {
-        const size_t l = size_t(label.at<int>(y, x));
-        seg_of_label[l] = seg_of.at<int>(y, x);
-        pixel_of_label[l] = cv::Point(x, y);
+        const size_t l = size_t(n.label.at<int>(y, x));
+        n.segment_of_label[l] = seg_of.at<int>(y, x);
+        n.pixel_of_label[l] = cv::Point(x, y);
       }
-  auto region_at_px = [&](double x, double y) {
+  return n;
+}
+
+// The drawing as the base sees it: where each vertex is in the drawing and its region's level.
+struct DrawingOnBase {
+  const TriMesh& base;
+  const DrawingCurves& dc;
+  const DrawingInterpretation& di;
+  const DrawingReliefParams& p;
+  const std::vector<Vec2>* pixel_of_vertex;
+
+  int region_at_px(double x, double y) const {
     const int xi = int(std::lround(x)), yi = int(std::lround(y));
     if (xi < 0 || yi < 0 || xi >= dc.width || yi >= dc.height) return -1;
     return di.regions.at<int>(yi, xi);
-  };
+  }
   // Where a vertex is in the drawing (px); NaN: not covered by it.
-  auto pixel = [&](int v) {
+  Vec2 pixel(int v) const {
     if (pixel_of_vertex) return (*pixel_of_vertex)[size_t(v)];
-    return Vec2(base.vertices[v].x() / p.pixel_size, -base.vertices[v].y() / p.pixel_size);
-  };
+    return Vec2(base.vertices[size_t(v)].x() / p.pixel_size, -base.vertices[size_t(v)].y() / p.pixel_size);
+  }
   // A vertex's level (its region's, in mesh units; 0 on a curve or outside the drawing).
-  auto level_of = [&](int v) {
+  double level_of(int v) const {
     const Vec2 q = pixel(v);
     const int reg = std::isfinite(q.x()) ? region_at_px(q.x(), q.y()) : -1;
     return reg >= 0 ? di.region_height[size_t(reg)] * p.step_height : 0.0;
-  };
-  // The local relief r at every vertex within the margin of a curve (eqs. 7.1-7.3): from the
-  // height of its own region to that of the region across the nearest curve point, seen locally (a
-  // curve running past a junction has different regions beside it along its length, so its sides
-  // are not one pair), shaped by the profile of the curve's stretch there.
-  std::vector<double> r(size_t(nv), 0);
+  }
+};
+
+// The regions on either side of the curve near pixel (x, y), seen locally from its nearest curve
+// point q (a curve running past a junction has different regions beside it along its length).
+struct LocalSides {
+  int here = -1, across = -1;
+  bool on_left = true;  // (x, y) left of the curve's direction of travel, image y down
+};
+
+LocalSides local_sides(const DrawingOnBase& d, int x, int y, const cv::Point& q, const Vec2& dir, int curve) {
+  LocalSides s;
+  s.here = d.di.regions.at<int>(y, x);
+  double ux = x - q.x, uy = y - q.y;
+  const double un = std::hypot(ux, uy);
+  const double reach = 2 * d.p.margin + 3;
+  if (un > 0) {
+    ux /= un, uy /= un;
+    for (double step = 2.0; step <= reach && s.across < 0; step += 1) s.across = d.region_at_px(q.x - ux * step, q.y - uy * step);
+    if (s.here < 0)
+      for (double step = 2.0; step <= reach && s.here < 0; step += 1) s.here = d.region_at_px(q.x + ux * step, q.y + uy * step);
+    s.on_left = ux * dir.y() - uy * dir.x() > 0;
+  } else {  // on the curve: its two sides as the curve records them
+    s.here = d.di.sides[size_t(curve)][0], s.across = d.di.sides[size_t(curve)][1];
+  }
+  return s;
+}
+
+// The stretch of curve k at arc-length fraction `at`, or null when the curve has one profile.
+const ProfileSpan* span_at(const DrawingInterpretation& di, int k, double at) {
+  const ProfileSpan* span = nullptr;
+  if (!di.profiles.empty() && !di.profiles[size_t(k)].empty())
+    for (const ProfileSpan& sp : di.profiles[size_t(k)])
+      if (at >= sp.from && at <= sp.to) span = &sp;
+  return span;
+}
+
+// The local relief r at a vertex at pixel (x, y) within the margin of a curve (eqs. 7.1-7.3): from
+// the height of its own region to that of the region across the nearest curve point, shaped by
+// the profile of the curve's stretch there. False when the vertex is beyond the margin's flat band
+// or its sides are unknown.
+bool margin_relief(const DrawingOnBase& d, const CurveSegments& segs, const NearestInk& ink, int x, int y, double& value) {
+  const double dist = ink.dist.at<float>(y, x);
+  if (dist > kFlatBand * d.p.margin) return false;  // the profile, then a flat band (see kFlatBand)
+  const size_t l = size_t(ink.label.at<int>(y, x));
+  const int sg = ink.segment_of_label[l];
+  if (sg < 0) return false;
+  const int k = segs.curve[size_t(sg)];
+  LocalSides s = local_sides(d, x, y, ink.pixel_of_label[l], segs.dir[size_t(sg)], k);
+  const bool step_curve = d.di.is_step.empty() || d.di.is_step[size_t(k)];
+  if (!step_curve) {  // a ridge / valley alone: both sides at one height
+    if (s.here < 0) s.here = s.across;
+    s.across = s.here;
+  }
+  if (s.here < 0 || s.across < 0) return false;
+  const double hh = d.di.region_height[size_t(s.here)] * d.p.step_height;
+  const double ha = d.di.region_height[size_t(s.across)] * d.p.step_height;
+  const double h_left = s.on_left ? hh : ha, h_right = s.on_left ? ha : hh;
+  const double t = std::min(1.0, dist / d.p.margin) * (s.on_left ? -1 : 1);
+  const ProfileSpan* span = span_at(d.di, k, 0.5 * (segs.from[size_t(sg)] + segs.to[size_t(sg)]));
+  if (span == nullptr || span->profile == CurveProfile::Step) {
+    const double S = span && !span->shape.empty() ? free_form(span->shape, t) : step_profile(t);
+    value = h_left + (h_right - h_left) * S;
+    return true;
+  }
+  const double amp = std::max(1, d.di.weight.empty() ? 0 : d.di.weight[size_t(k)]) * d.p.step_height *
+                     (span->profile == CurveProfile::Ridge ? 1 : -1);
+  const double B = !span->shape.empty() ? free_form(span->shape, t) : 1 - step_profile(2 * std::abs(t) - 1);
+  // Beside a step curve, a ridge stretch rides on its step.
+  value = (step_curve ? h_left + (h_right - h_left) * step_profile(t) : hh) + amp * B;
+  return true;
+}
+
+// r and the margin flags at every vertex; outside the drawing a vertex is ground (in a margin, r 0).
+void local_relief(const DrawingOnBase& d, std::vector<double>& r, std::vector<char>& in_margin) {
+  const int nv = d.base.n_vertices();
+  const CurveSegments segs = curve_segments(d.dc);
+  const NearestInk ink = nearest_ink(d.dc);
+  r.assign(size_t(nv), 0);
+  in_margin.assign(size_t(nv), 0);
   for (int v = 0; v < nv; ++v) {
-    const Vec2 pv = pixel(v);
-    if (!std::isfinite(pv.x()) || !std::isfinite(pv.y())) {  // outside the drawing: the ground
-      out.in_margin[size_t(v)] = 1;
+    const Vec2 pv = d.pixel(v);
+    if (!std::isfinite(pv.x()) || !std::isfinite(pv.y())) {
+      in_margin[size_t(v)] = 1;
       continue;
     }
     const int x = int(std::lround(pv.x())), y = int(std::lround(pv.y()));
-    if (x < 0 || y < 0 || x >= dc.width || y >= dc.height) continue;
-    const double d = dist.at<float>(y, x);
-    if (d > kFlatBand * p.margin) continue;  // the profile, then a flat band (see kFlatBand)
-    const size_t l = size_t(label.at<int>(y, x));
-    const int sg = seg_of_label[l];
-    if (sg < 0) continue;
-    const int k = seg_curve[size_t(sg)];
-    const cv::Point q = pixel_of_label[l];
-    const int own = di.regions.at<int>(y, x);
-    double ux = x - q.x, uy = y - q.y;
-    const double un = std::hypot(ux, uy);
-    int across = -1, here = own;
-    bool on_left = true;
-    if (un > 0) {
-      ux /= un, uy /= un;
-      for (double step = 2.0; step <= 2 * p.margin + 3 && across < 0; step += 1)
-        across = region_at_px(q.x - ux * step, q.y - uy * step);
-      if (here < 0)
-        for (double step = 2.0; step <= 2 * p.margin + 3 && here < 0; step += 1) here = region_at_px(q.x + ux * step, q.y + uy * step);
-      const Vec2 dir = seg_dir[size_t(sg)];
-      on_left = ux * dir.y() - uy * dir.x() > 0;  // left of the direction of travel, image y down
-    } else {  // on the curve: its two sides as the curve records them
-      here = di.sides[size_t(k)][0], across = di.sides[size_t(k)][1];
-    }
-    const bool step_curve = di.is_step.empty() || di.is_step[size_t(k)];
-    if (!step_curve) {  // a ridge / valley alone: both sides at one height
-      if (here < 0) here = across;
-      across = here;
-    }
-    if (here < 0 || across < 0) continue;
-    const double hh = di.region_height[size_t(here)] * p.step_height, ha = di.region_height[size_t(across)] * p.step_height;
-    const double h_left = on_left ? hh : ha, h_right = on_left ? ha : hh;
-    const double t = std::min(1.0, d / p.margin) * (on_left ? -1 : 1);
-    // The stretch of the curve this point is beside, and its profile.
-    const ProfileSpan* span = nullptr;
-    if (!di.profiles.empty() && !di.profiles[size_t(k)].empty()) {
-      const double at = 0.5 * (seg_from[size_t(sg)] + seg_to[size_t(sg)]);
-      for (const ProfileSpan& sp : di.profiles[size_t(k)])
-        if (at >= sp.from && at <= sp.to) span = &sp;
-    }
-    double value;
-    if (span == nullptr || span->profile == CurveProfile::Step) {
-      const double S = span && !span->shape.empty() ? free_form(span->shape, t) : step_profile(t);
-      value = h_left + (h_right - h_left) * S;
-    } else {
-      const double amp = std::max(1, di.weight.empty() ? 0 : di.weight[size_t(k)]) * p.step_height *
-                         (span->profile == CurveProfile::Ridge ? 1 : -1);
-      const double B = !span->shape.empty() ? free_form(span->shape, t) : 1 - step_profile(2 * std::abs(t) - 1);
-      // Beside a step curve, a ridge stretch rides on its step.
-      value = (step_curve ? h_left + (h_right - h_left) * step_profile(t) : hh) + amp * B;
-    }
-    r[size_t(v)] = value;
-    out.in_margin[size_t(v)] = 1;
+    if (x < 0 || y < 0 || x >= d.dc.width || y >= d.dc.height) continue;
+    if (margin_relief(d, segs, ink, x, y, r[size_t(v)])) in_margin[size_t(v)] = 1;
   }
-  // eqs. 7.4 and 7.6, two Laplacian solves. L: the Laplacian of r where a vertex and all its
-  // neighbours are in a margin (there Delta r is known), harmonic elsewhere. R: r in the margins,
-  // Delta R = L elsewhere. Because each margin is held flat beyond its profile (kFlatBand), L fades
-  // to zero at the margins' outer edges and the free surface between curves follows the levels.
-  const MeshTopology topo = mesh_topology(base);
+}
+
+// Unknowns of a solve: the vertices not held (free index per vertex, -1 when held).
+struct FreeSet {
+  std::vector<int> of_vertex;
+  int count = 0;
+};
+FreeSet free_where(const std::vector<char>& held) {
+  FreeSet f;
+  f.of_vertex.assign(held.size(), -1);
+  for (size_t v = 0; v < held.size(); ++v)
+    if (!held[v]) f.of_vertex[v] = f.count++;
+  return f;
+}
+
+// Step 1 (eq. 7.4): L = Delta r = -M^-1 K r where a vertex and all its neighbours are in a margin
+// (there Delta r is known), K L = 0 elsewhere.
+Eigen::VectorXd interpolated_laplacian(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& mass,
+                                       const Eigen::VectorXd& rv, const std::vector<char>& in_margin,
+                                       SolverMethod method, SolveReport& report) {
+  const int nv = int(rv.size());
+  std::vector<char> interior(in_margin);  // margin vertices whose neighbours are all in margins
+  for (int c = 0; c < K.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(K, c); it; ++it)
+      if (!in_margin[size_t(it.row())]) interior[size_t(c)] = 0;
+  const FreeSet f = free_where(interior);
+  const Eigen::VectorXd Kr = K * rv;
+  Eigen::VectorXd Lap = Eigen::VectorXd::Zero(nv);
+  for (int v = 0; v < nv; ++v)
+    if (interior[size_t(v)]) Lap[v] = mass[v] > 0 ? -Kr[v] / mass[v] : 0;
+  const Eigen::VectorXd KLc = K * Lap;
+  Eigen::VectorXd rhs(f.count), Lf;
+  for (int v = 0; v < nv; ++v)
+    if (f.of_vertex[size_t(v)] >= 0) rhs[f.of_vertex[size_t(v)]] = -KLc[v];
+  report = solve_free(K, mass, f.of_vertex, f.count, rhs, Lf, Eigen::VectorXd::Zero(f.count), method);
+  for (int v = 0; v < nv; ++v)
+    if (f.of_vertex[size_t(v)] >= 0) Lap[v] = Lf[f.of_vertex[size_t(v)]];
+  return Lap;
+}
+
+// Step 2 (eq. 7.6): R = r in the margins; Delta R = L, i.e. K R = -M L, elsewhere, started from
+// the interpretation's levels (what the thesis starts from).
+std::vector<double> interpolated_relief(const DrawingOnBase& d, const Eigen::SparseMatrix<double>& K,
+                                        const Eigen::VectorXd& mass, const Eigen::VectorXd& Lap,
+                                        const std::vector<double>& r, const std::vector<char>& in_margin,
+                                        SolveReport& report) {
+  const int nv = int(r.size());
+  const FreeSet f = free_where(in_margin);
+  Eigen::VectorXd Rc = Eigen::VectorXd::Zero(nv);
+  for (int v = 0; v < nv; ++v)
+    if (in_margin[size_t(v)]) Rc[v] = r[size_t(v)];
+  const Eigen::VectorXd KRc = K * Rc;
+  Eigen::VectorXd rhs(f.count), guess(f.count), Rf;
+  for (int v = 0; v < nv; ++v)
+    if (f.of_vertex[size_t(v)] >= 0) {
+      rhs[f.of_vertex[size_t(v)]] = -mass[v] * Lap[v] - KRc[v];
+      guess[f.of_vertex[size_t(v)]] = d.level_of(v);
+    }
+  report = solve_free(K, mass, f.of_vertex, f.count, rhs, Rf, guess, d.p.solver);
+  std::vector<double> height(static_cast<size_t>(nv));
+  for (int v = 0; v < nv; ++v) height[size_t(v)] = f.of_vertex[size_t(v)] >= 0 ? Rf[f.of_vertex[size_t(v)]] : Rc[v];
+  return height;
+}
+
+}  // namespace
+
+DrawingRelief reconstruct_drawing_relief(const Surface& base, const DrawingCurves& dc, const DrawingInterpretation& di,
+                                         const DrawingReliefParams& p, const std::vector<Vec2>* pixel_of_vertex) {
+  p.validate();
+  base.require_triangles();
+  const int nv = base.n_vertices();
+  if (pixel_of_vertex && int(pixel_of_vertex->size()) != nv)
+    throw InputError("reconstruct_drawing_relief: one pixel position per base vertex is needed.");
+  const DrawingOnBase d{base.mesh(), dc, di, p, pixel_of_vertex};
+  DrawingRelief out;
+  std::vector<double> r;
+  local_relief(d, r, out.in_margin);
   // The base's border holds its region's level (with the paper as ground: 0) where no margin
   // reaches it; left free, the border took whatever the interpolated Laplacian made of it (on a
   // real drawing: 14 steps below the paper at a corner of the grid).
+  const VertexRing& border = base.topology().border;
   for (int v = 0; v < nv; ++v)
-    if (!out.in_margin[size_t(v)] && topo.border.offset[size_t(v) + 1] > topo.border.offset[size_t(v)]) {
-      r[size_t(v)] = level_of(v);
+    if (!out.in_margin[size_t(v)] && border.offset[size_t(v) + 1] > border.offset[size_t(v)]) {
+      r[size_t(v)] = d.level_of(v);
       out.in_margin[size_t(v)] = 1;
     }
-  const LaplacianResult lap = cotangent_laplacian(base, topo);
+  // eqs. 7.4 and 7.6, two Laplacian solves. Because each margin is held flat beyond its profile
+  // (kFlatBand), L fades to zero at the margins' outer edges and the free surface between curves
+  // follows the levels.
+  const LaplacianResult& lap = base.laplacian();
   const Eigen::SparseMatrix<double> K = -lap.L;  // positive semi-definite stiffness
-  Eigen::VectorXd rv(nv);
-  for (int v = 0; v < nv; ++v) rv[v] = r[size_t(v)];
-  const Eigen::VectorXd Kr = K * rv;
-  std::vector<char> interior(out.in_margin);  // margin vertices whose neighbours are all in margins
-  for (int c = 0; c < K.outerSize(); ++c)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(K, c); it; ++it)
-      if (!out.in_margin[size_t(it.row())]) interior[size_t(c)] = 0;
-  // Step 1 (eq. 7.4): L = Delta r = -M^-1 K r on the interior margin vertices; K L = 0 elsewhere.
-  std::vector<int> free1(size_t(nv), -1);
-  int nfree1 = 0;
-  Eigen::VectorXd Lc = Eigen::VectorXd::Zero(nv);
-  for (int v = 0; v < nv; ++v)
-    if (interior[size_t(v)])
-      Lc[v] = lap.mass[v] > 0 ? -Kr[v] / lap.mass[v] : 0;
-    else
-      free1[size_t(v)] = nfree1++;
-  const Eigen::VectorXd KLc = K * Lc;
-  Eigen::VectorXd rhs1(nfree1), Lf;
-  for (int v = 0; v < nv; ++v)
-    if (free1[size_t(v)] >= 0) rhs1[free1[size_t(v)]] = -KLc[v];
-  out.laplacian_solve = solve_free(K, lap.mass, free1, nfree1, rhs1, Lf, Eigen::VectorXd::Zero(nfree1), p.solver);
-  Eigen::VectorXd Lap = Lc;
-  for (int v = 0; v < nv; ++v)
-    if (free1[size_t(v)] >= 0) Lap[v] = Lf[free1[size_t(v)]];
+  const Eigen::VectorXd rv = Eigen::Map<const Eigen::VectorXd>(r.data(), nv);
+  const Eigen::VectorXd Lap = interpolated_laplacian(K, lap.mass, rv, out.in_margin, p.solver, out.laplacian_solve);
   out.laplacian.assign(Lap.data(), Lap.data() + nv);
-  // Step 2 (eq. 7.6): R = r in the margins; Delta R = L, i.e. K R = -M L, elsewhere.
-  std::vector<int> free2(size_t(nv), -1);
-  int nfree2 = 0;
-  Eigen::VectorXd Rc = Eigen::VectorXd::Zero(nv);
-  for (int v = 0; v < nv; ++v)
-    if (out.in_margin[size_t(v)])
-      Rc[v] = r[size_t(v)];
-    else
-      free2[size_t(v)] = nfree2++;
-  const Eigen::VectorXd KRc = K * Rc;
-  Eigen::VectorXd rhs2(nfree2), Rf;
-  for (int v = 0; v < nv; ++v)
-    if (free2[size_t(v)] >= 0) rhs2[free2[size_t(v)]] = -lap.mass[v] * Lap[v] - KRc[v];
-  Eigen::VectorXd guess2(nfree2);  // the interpretation's levels (what the thesis starts from)
-  for (int v = 0; v < nv; ++v)
-    if (free2[size_t(v)] >= 0) guess2[free2[size_t(v)]] = level_of(v);
-  out.relief_solve = solve_free(K, lap.mass, free2, nfree2, rhs2, Rf, guess2, p.solver);
-  for (int v = 0; v < nv; ++v) out.height[size_t(v)] = free2[size_t(v)] >= 0 ? Rf[free2[size_t(v)]] : Rc[v];
+  out.height = interpolated_relief(d, K, lap.mass, Lap, r, out.in_margin, out.relief_solve);
   return out;
+}
+
+DrawingRelief reconstruct_drawing_relief(const TriMesh& base, const DrawingCurves& dc, const DrawingInterpretation& di,
+                                         const DrawingReliefParams& p, const std::vector<Vec2>* pixel_of_vertex) {
+  return reconstruct_drawing_relief(Surface::borrow(base), dc, di, p, pixel_of_vertex);
 }
 
 }  // namespace reliefkit
 
 namespace reliefkit {
+namespace {
 
-DrawingProjection project_drawing(const TriMesh& base, const cv::Rect& extent, Vec3 view) {
-  require_triangles(base);
-  if (extent.width < 2 || extent.height < 2) throw InputError("The drawing is too small to project (at least 2 x 2 pixels).");
-  const int nv = base.n_vertices();
-  DrawingProjection out;
-  const VertexFaces vf = vertex_faces(base);
-  const std::vector<Vec3> normals = vertex_normals(base, vf);
-  // Area-weighted centroid, covariance and mean normal.
+// The base's area-weighted centroid, principal axes (eigenvalues increasing: least extent first),
+// area normal, and the median length of each face's first edge.
+struct BaseShape {
+  Vec3 centroid, area_normal;
+  Vec3 axis[3];
+  double edge = 0;
+};
+
+BaseShape base_shape(const TriMesh& base) {
+  BaseShape s;
   Vec3 c = Vec3::Zero(), area_normal = Vec3::Zero();
   double total = 0;
   std::vector<double> edges;
@@ -389,38 +470,30 @@ DrawingProjection project_drawing(const TriMesh& base, const cv::Rect& extent, V
     const double A = 0.5 * (b - a).cross(d - a).norm();
     for (const Vec3* q : {&a, &b, &d}) C += (A / 3) * (*q - c) * (*q - c).transpose();
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(C);  // eigenvalues increasing
-  Vec3 e_small = es.eigenvectors().col(0), e_mid = es.eigenvectors().col(1), e_big = es.eigenvectors().col(2);
-  if (view.norm() > 0 && std::isfinite(view.norm())) {
-    view.normalize();
-    // The image plane's axes: the base's largest extents seen along the view.
-    e_big = (e_big - e_big.dot(view) * view);
-    if (e_big.norm() < 1e-6) e_big = e_mid - e_mid.dot(view) * view;
-    e_big.normalize();
-    e_mid = view.cross(e_big).normalized();
-  } else {
-    // Along the axis of least extent, towards the side most of the area faces away from.
-    view = area_normal.dot(e_small) >= 0 ? Vec3(-e_small) : e_small;
-  }
-  out.view = view;
-  auto proj = [&](const Vec3& p, const Vec3& axis) { return (p - c).dot(axis); };
-  // Candidates: vertices facing the viewer.
-  std::vector<char> facing(size_t(nv), 0);
-  double a0 = 1e300, a1 = -1e300, b0 = 1e300, b1 = -1e300;
-  for (int v = 0; v < nv; ++v) {
-    if (!(normals[size_t(v)].dot(-view) > 0.05)) continue;
-    facing[size_t(v)] = 1;
-    const double a = proj(base.vertices[v], e_big), b = proj(base.vertices[v], e_mid);
-    a0 = std::min(a0, a), a1 = std::max(a1, a), b0 = std::min(b0, b), b1 = std::max(b1, b);
-  }
-  if (a0 > a1) throw InputError("No part of the base faces the view direction: the drawing cannot be projected onto it.");
-  // The drawing's longer side along the base's longer projected side (when they differ by more
-  // than 10 %; otherwise, upright in the world); right x up = -view (not mirrored).
-  const bool wide = extent.width >= extent.height;
-  Vec3 right = (a1 - a0 >= b1 - b0) == wide ? e_big : e_mid, up = (a1 - a0 >= b1 - b0) == wide ? e_mid : e_big;
-  // Upright: the drawing's up along the world's +y as far as possible (+z when the view is along y).
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(C);
+  for (int k = 0; k < 3; ++k) s.axis[k] = es.eigenvectors().col(k);
+  s.centroid = c;
+  s.area_normal = area_normal;
+  std::nth_element(edges.begin(), edges.begin() + long(edges.size() / 2), edges.end());
+  s.edge = edges[edges.size() / 2];
+  return s;
+}
+
+// A range of projections onto an axis.
+struct Span {
+  double lo = 1e300, hi = -1e300;
+  void add(double x) { lo = std::min(lo, x), hi = std::max(hi, x); }
+  double size() const { return hi - lo; }
+};
+
+// The image's right and up on the base: the drawing's longer side along the base's longer
+// projected side `a` (or `b`; upright in the world when they differ by less than 10 %); right x up
+// = -view (not mirrored); up along the world's +y as far as possible (+z when the view is along y).
+void orient_image(const Vec3& view, const Vec3& axis_a, const Vec3& axis_b, const Span& a, const Span& b, bool wide,
+                  Vec3& right, Vec3& up) {
+  right = (a.size() >= b.size()) == wide ? axis_a : axis_b, up = (a.size() >= b.size()) == wide ? axis_b : axis_a;
   const Vec3 world_up = std::abs(view.y()) < 0.9 ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
-  if (std::max(a1 - a0, b1 - b0) < 1.1 * std::min(a1 - a0, b1 - b0)) {
+  if (std::max(a.size(), b.size()) < 1.1 * std::min(a.size(), b.size())) {
     up = (world_up - world_up.dot(view) * view).normalized();
     right = up.cross(-view).normalized();
   }
@@ -431,39 +504,78 @@ DrawingProjection project_drawing(const TriMesh& base, const cv::Rect& extent, V
     if (right.dot(world_up) < 0) right = -right;
     if (right.cross(up).dot(-view) < 0) up = -up;
   }
-  out.right = right, out.up = up;
-  double r0 = 1e300, r1 = -1e300, u0 = 1e300, u1 = -1e300;
+}
+
+// Occlusion: the nearest depth per cell of a grid over the projected base (cells of `cell`); a
+// vertex more than `behind` farther than its cell's nearest is hidden.
+struct DepthGrid {
+  Span r, u;
+  double cell = 1;
+  int w = 1, h = 1;
+  std::vector<double> nearest;
+  size_t cell_of(double pr, double pu) const {
+    const int i = std::clamp(int((pr - r.lo) / cell), 0, w - 1), j = std::clamp(int((pu - u.lo) / cell), 0, h - 1);
+    return size_t(j) * w + i;
+  }
+};
+
+}  // namespace
+
+DrawingProjection project_drawing(const Surface& surface, const cv::Rect& extent, Vec3 view) {
+  surface.require_triangles();
+  if (extent.width < 2 || extent.height < 2) throw InputError("The drawing is too small to project (at least 2 x 2 pixels).");
+  const TriMesh& base = surface.mesh();
+  const int nv = base.n_vertices();
+  const std::vector<Vec3>& normals = surface.normals();
+  const BaseShape shape = base_shape(base);
+  Vec3 e_small = shape.axis[0], e_mid = shape.axis[1], e_big = shape.axis[2];
+  if (view.norm() > 0 && std::isfinite(view.norm())) {
+    view.normalize();
+    // The image plane's axes: the base's largest extents seen along the view.
+    e_big = (e_big - e_big.dot(view) * view);
+    if (e_big.norm() < 1e-6) e_big = e_mid - e_mid.dot(view) * view;
+    e_big.normalize();
+    e_mid = view.cross(e_big).normalized();
+  } else {
+    // Along the axis of least extent, towards the side most of the area faces away from.
+    view = shape.area_normal.dot(e_small) >= 0 ? Vec3(-e_small) : e_small;
+  }
+  DrawingProjection out;
+  out.view = view;
+  auto proj = [&](const Vec3& p, const Vec3& axis) { return (p - shape.centroid).dot(axis); };
+  // Candidates: vertices facing the viewer.
+  std::vector<char> facing(size_t(nv), 0);
+  Span a, b;
+  for (int v = 0; v < nv; ++v) {
+    if (!(normals[size_t(v)].dot(-view) > 0.05)) continue;
+    facing[size_t(v)] = 1;
+    a.add(proj(base.vertices[v], e_big)), b.add(proj(base.vertices[v], e_mid));
+  }
+  if (a.lo > a.hi) throw InputError("No part of the base faces the view direction: the drawing cannot be projected onto it.");
+  orient_image(view, e_big, e_mid, a, b, extent.width >= extent.height, out.right, out.up);
+  DepthGrid g;
   for (int v = 0; v < nv; ++v)
-    if (facing[size_t(v)]) {
-      const double r = proj(base.vertices[v], right), u = proj(base.vertices[v], up);
-      r0 = std::min(r0, r), r1 = std::max(r1, r), u0 = std::min(u0, u), u1 = std::max(u1, u);
-    }
-  out.pixel_size = std::max((r1 - r0) / (extent.width - 1), (u1 - u0) / (extent.height - 1));
+    if (facing[size_t(v)]) g.r.add(proj(base.vertices[v], out.right)), g.u.add(proj(base.vertices[v], out.up));
+  out.pixel_size = std::max(g.r.size() / (extent.width - 1), g.u.size() / (extent.height - 1));
   if (!(out.pixel_size > 0)) throw InputError("The base's part facing the view has no extent across it.");
-  const double rc = 0.5 * (r0 + r1), uc = 0.5 * (u0 + u1);
-  // Occlusion: the nearest depth per cell of a grid over the projected base (cells of about two
-  // edge lengths); a vertex more than a few edge lengths behind it is hidden.
-  std::nth_element(edges.begin(), edges.begin() + long(edges.size() / 2), edges.end());
-  const double h = edges[edges.size() / 2], cell = 2 * h;
-  const int gw = std::max(1, int((r1 - r0) / cell) + 1), gh = std::max(1, int((u1 - u0) / cell) + 1);
-  std::vector<double> nearest(size_t(gw) * gh, 1e300);
-  auto cell_of = [&](const Vec3& p) {
-    const int i = std::clamp(int((proj(p, right) - r0) / cell), 0, gw - 1), j = std::clamp(int((proj(p, up) - u0) / cell), 0, gh - 1);
-    return size_t(j) * gw + i;
-  };
+  g.cell = 2 * shape.edge;  // about two edge lengths
+  g.w = std::max(1, int(g.r.size() / g.cell) + 1), g.h = std::max(1, int(g.u.size() / g.cell) + 1);
+  g.nearest.assign(size_t(g.w) * g.h, 1e300);
+  auto cell_of = [&](const Vec3& p) { return g.cell_of(proj(p, out.right), proj(p, out.up)); };
   for (int v = 0; v < nv; ++v)
     if (facing[size_t(v)]) {
-      double& n = nearest[cell_of(base.vertices[v])];
+      double& n = g.nearest[cell_of(base.vertices[v])];
       n = std::min(n, proj(base.vertices[v], view));
     }
+  const double rc = 0.5 * (g.r.lo + g.r.hi), uc = 0.5 * (g.u.lo + g.u.hi);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   out.pixel.assign(size_t(nv), Vec2(nan, nan));
   for (int v = 0; v < nv; ++v) {
     if (!facing[size_t(v)]) continue;
     const Vec3& p = base.vertices[v];
-    if (proj(p, view) > nearest[cell_of(p)] + 3 * h) continue;
-    const double px = extent.x + 0.5 * (extent.width - 1) + (proj(p, right) - rc) / out.pixel_size;
-    const double py = extent.y + 0.5 * (extent.height - 1) - (proj(p, up) - uc) / out.pixel_size;
+    if (proj(p, view) > g.nearest[cell_of(p)] + 3 * shape.edge) continue;
+    const double px = extent.x + 0.5 * (extent.width - 1) + (proj(p, out.right) - rc) / out.pixel_size;
+    const double py = extent.y + 0.5 * (extent.height - 1) - (proj(p, out.up) - uc) / out.pixel_size;
     constexpr double kSlack = 1e-6;  // rounding at the fitted extent's edges
     if (px < extent.x - kSlack || py < extent.y - kSlack || px > extent.x + extent.width - 1 + kSlack ||
         py > extent.y + extent.height - 1 + kSlack)
@@ -471,15 +583,23 @@ DrawingProjection project_drawing(const TriMesh& base, const cv::Rect& extent, V
     out.pixel[size_t(v)] = Vec2(px, py);
     ++out.covered;
   }
-  out.edge_px = h / out.pixel_size;
+  out.edge_px = shape.edge / out.pixel_size;
   return out;
 }
 
-TriMesh displace_along_normals(const TriMesh& base, const std::vector<double>& height) {
-  TriMesh m = base;
-  const std::vector<Vec3> n = vertex_normals(base, vertex_faces(base));
+DrawingProjection project_drawing(const TriMesh& base, const cv::Rect& extent, Vec3 view) {
+  return project_drawing(Surface::borrow(base), extent, view);
+}
+
+TriMesh displace_along_normals(const Surface& base, const std::vector<double>& height) {
+  TriMesh m = base.mesh();
+  const std::vector<Vec3>& n = base.normals();
   for (int v = 0; v < m.n_vertices(); ++v) m.vertices[v] += height[size_t(v)] * n[size_t(v)];
   return m;
+}
+
+TriMesh displace_along_normals(const TriMesh& base, const std::vector<double>& height) {
+  return displace_along_normals(Surface::borrow(base), height);
 }
 
 }  // namespace reliefkit

@@ -130,51 +130,43 @@ Vec2 end_direction(const std::vector<Vec2>& c, int e) {
   return len > 0 ? Vec2(d / len) : Vec2(0, 0);
 }
 
-// Line detection fades where lines meet or turn sharply (a corner's profile is no line's), so a
-// drawn stroke comes out in pieces whose ends face each other across a gap of about 2 sigma.
-// Ends are joined greedily, the cheapest pair first (gap plus a penalty for the turn), when the
-// gap is within `join` px and each end points towards the other; a piece whose two ends meet is
-// closed. Pieces are concatenated in place; `pieces` keeps only the joined results.
-void join_pieces(std::vector<std::vector<Vec2>>& pieces, const LineDetectionParams& p) {
-  const double join = 2.5 * p.sigma + 1.5;
-  struct End {
-    int piece, e;
-    Vec2 at, dir;
-  };
-  std::vector<End> ends;
-  for (size_t i = 0; i < pieces.size(); ++i)
-    for (int e = 0; e < 2; ++e) ends.push_back({int(i), e, e ? pieces[i].back() : pieces[i].front(), end_direction(pieces[i], e)});
-  // Candidate pairs through a grid of cell `join`.
+// The end of a piece: which piece, which end (0 front, 1 back), where, and its way out.
+struct PieceEnd {
+  int piece, e;
+  Vec2 at, dir;
+};
+// A candidate join of two ends, and its cost (gap plus a penalty for the turn).
+struct EndPair {
+  double cost;
+  int a, b;
+};
+
+// Pairs of ends within `join` px of each other (through a grid of cell `join`) that face each other
+// and turn by less than ~115 degrees.
+std::vector<EndPair> end_pairs(const std::vector<PieceEnd>& ends, const std::vector<std::vector<Vec2>>& pieces, double join) {
   const double cell = join;
   std::unordered_map<long long, std::vector<int>> grid;
-  auto key = [&](const Vec2& q) {
-    return (long long)std::floor(q.x() / cell) * 1000003LL + (long long)std::floor(q.y() / cell);
-  };
-  for (size_t k = 0; k < ends.size(); ++k) grid[key(ends[k].at)].push_back(int(k));
-  struct Pair {
-    double cost;
-    int a, b;
-  };
-  std::vector<Pair> cand;
+  auto cell_of = [&](double v) { return (long long)std::floor(v / cell); };
+  for (size_t k = 0; k < ends.size(); ++k) grid[cell_of(ends[k].at.x()) * 1000003LL + cell_of(ends[k].at.y())].push_back(int(k));
+  std::vector<EndPair> cand;
   for (size_t a = 0; a < ends.size(); ++a) {
-    const long long gx = (long long)std::floor(ends[a].at.x() / cell), gy = (long long)std::floor(ends[a].at.y() / cell);
+    const long long gx = cell_of(ends[a].at.x()), gy = cell_of(ends[a].at.y());
     for (long long ox = -1; ox <= 1; ++ox)
       for (long long oy = -1; oy <= 1; ++oy) {
         auto it = grid.find((gx + ox) * 1000003LL + (gy + oy));
         if (it == grid.end()) continue;
         for (int b : it->second) {
           if (b <= int(a)) continue;
-          const End &A = ends[a], &B = ends[size_t(b)];
+          const PieceEnd &A = ends[a], &B = ends[size_t(b)];
           if (A.piece == B.piece && pieces[size_t(A.piece)].size() < 8) continue;  // a speck does not close on itself
           const Vec2 v = B.at - A.at;
           const double gap = v.norm();
           if (gap > join) continue;
-          double turn = 0;  // angle between A's way out and B's way in
           if (gap > 0.5) {
             const Vec2 u = v / gap;
             if (A.dir.dot(u) < 0.3 || B.dir.dot(-u) < 0.3) continue;  // each end faces the other
           }
-          turn = std::acos(std::clamp(-A.dir.dot(B.dir), -1.0, 1.0));
+          const double turn = std::acos(std::clamp(-A.dir.dot(B.dir), -1.0, 1.0));  // A's way out to B's way in
           if (turn > 2.0) continue;  // sharper than ~115 degrees: not one stroke
           cand.push_back({gap + 2 * turn, int(a), b});
         }
@@ -183,12 +175,26 @@ void join_pieces(std::vector<std::vector<Vec2>>& pieces, const LineDetectionPara
   // Where three or more ends meet (a junction: a T or a Y), the curves end there: the thesis'
   // curves meet at junctions but do not run through them.
   std::vector<int> partners(ends.size(), 0);
-  for (const Pair& c : cand) ++partners[size_t(c.a)], ++partners[size_t(c.b)];
+  for (const EndPair& c : cand) ++partners[size_t(c.a)], ++partners[size_t(c.b)];
   cand.erase(std::remove_if(cand.begin(), cand.end(),
-                            [&](const Pair& c) { return partners[size_t(c.a)] > 1 || partners[size_t(c.b)] > 1; }),
+                            [&](const EndPair& c) { return partners[size_t(c.a)] > 1 || partners[size_t(c.b)] > 1; }),
              cand.end());
-  std::sort(cand.begin(), cand.end(), [](const Pair& x, const Pair& y) { return x.cost < y.cost; });
-  // Union of pieces: each piece's current owner, and which end of the owner each end now is.
+  std::sort(cand.begin(), cand.end(), [](const EndPair& x, const EndPair& y) { return x.cost < y.cost; });
+  return cand;
+}
+
+// Line detection fades where lines meet or turn sharply (a corner's profile is no line's), so a
+// drawn stroke comes out in pieces whose ends face each other across a gap of about 2 sigma.
+// Ends are joined greedily, the cheapest pair first, when the gap is within `join` px and each end
+// points towards the other; a piece whose two ends meet is closed. Pieces are concatenated in
+// place; `pieces` keeps only the joined results.
+void join_pieces(std::vector<std::vector<Vec2>>& pieces, const LineDetectionParams& p) {
+  std::vector<PieceEnd> ends;
+  for (size_t i = 0; i < pieces.size(); ++i)
+    for (int e = 0; e < 2; ++e) ends.push_back({int(i), e, e ? pieces[i].back() : pieces[i].front(), end_direction(pieces[i], e)});
+  const std::vector<EndPair> cand = end_pairs(ends, pieces, 2.5 * p.sigma + 1.5);
+  // Union of pieces: each piece's current owner. Joined ends are interior and never reused, so an
+  // unused end of piece i is still an end of the polyline held by find(i), at the same point.
   std::vector<char> used(ends.size(), 0), closed(pieces.size(), 0);
   std::vector<int> owner(pieces.size());
   std::iota(owner.begin(), owner.end(), 0);
@@ -196,11 +202,9 @@ void join_pieces(std::vector<std::vector<Vec2>>& pieces, const LineDetectionPara
     while (owner[size_t(i)] != i) i = owner[size_t(i)] = owner[size_t(owner[size_t(i)])];
     return i;
   };
-  // Position of each end: (root piece, front/back). Joined ends are interior and never reused, so
-  // an unused end of piece i is still an end of the polyline held by find(i), at the same point.
-  for (const Pair& c : cand) {
+  for (const EndPair& c : cand) {
     if (used[size_t(c.a)] || used[size_t(c.b)]) continue;
-    const End &A = ends[size_t(c.a)], &B = ends[size_t(c.b)];
+    const PieceEnd &A = ends[size_t(c.a)], &B = ends[size_t(c.b)];
     const int ra = find(A.piece), rb = find(B.piece);
     auto& pa = pieces[size_t(ra)];
     if (closed[size_t(ra)] || closed[size_t(rb)]) continue;
@@ -226,6 +230,173 @@ void join_pieces(std::vector<std::vector<Vec2>>& pieces, const LineDetectionPara
                pieces.end());
 }
 
+// The smoothed image's derivatives (Sobel 3x3, normalised: central differences).
+struct Derivatives {
+  cv::Mat g, rx, ry, rxx, rxy, ryy;
+};
+Derivatives derivatives(const cv::Mat& grey, double sigma) {
+  Derivatives d;
+  cv::GaussianBlur(grey, d.g, cv::Size(0, 0), sigma, sigma, cv::BORDER_REPLICATE);
+  cv::Sobel(d.g, d.rx, CV_32F, 1, 0, 3, 1.0 / 8, 0, cv::BORDER_REPLICATE);
+  cv::Sobel(d.g, d.ry, CV_32F, 0, 1, 3, 1.0 / 8, 0, cv::BORDER_REPLICATE);
+  cv::Sobel(d.g, d.rxx, CV_32F, 2, 0, 3, 1.0 / 4, 0, cv::BORDER_REPLICATE);
+  cv::Sobel(d.g, d.ryy, CV_32F, 0, 2, 3, 1.0 / 4, 0, cv::BORDER_REPLICATE);
+  cv::Sobel(d.g, d.rxy, CV_32F, 1, 1, 3, 1.0 / 16, 0, cv::BORDER_REPLICATE);
+  return d;
+}
+
+// Steger's test at pixel (x, y): dark enough, strongly curved across and flat along, with the
+// profile's minimum within the pixel. False when (x, y) is not a line point.
+bool line_point_at(const Derivatives& d, int x, int y, const LineDetectionParams& p, LinePoint& out) {
+  if (d.g.at<float>(y, x) > p.max_intensity) return false;
+  // Largest eigenvalue of the Hessian and its eigenvector n (across the line).
+  const double a = d.rxx.at<float>(y, x), b = d.rxy.at<float>(y, x), c = d.ryy.at<float>(y, x);
+  const double mean = 0.5 * (a + c), disc = std::sqrt(0.25 * (a - c) * (a - c) + b * b);
+  const double lambda = mean + disc;
+  if (lambda < p.min_strength) return false;
+  // Along a line the profile is flat: a dot of stippling (or a blot) curves both ways.
+  if (mean - disc > kMaxAlongRatio * lambda) return false;
+  double nx, ny;
+  if (std::abs(b) > 1e-12)
+    nx = b, ny = lambda - a;
+  else if (a >= c)
+    nx = 1, ny = 0;
+  else
+    nx = 0, ny = 1;
+  const double nn = std::hypot(nx, ny);
+  nx /= nn, ny /= nn;
+  const double t = -(d.rx.at<float>(y, x) * nx + d.ry.at<float>(y, x) * ny) / lambda;  // to the profile's minimum along n
+  if (std::abs(t * nx) > 0.5 || std::abs(t * ny) > 0.5) return false;
+  out = {float(x + t * nx), float(y + t * ny), float(-ny), float(nx), float(lambda)};
+  return true;
+}
+
+// The line points, numbered in row order, and the pixel each was found at.
+struct LinePoints {
+  std::vector<LinePoint> pts;
+  std::vector<int> at;  // pixel -> line point index (-1: none)
+  int W = 0, H = 0;
+};
+
+LinePoints detect_line_points(const cv::Mat& grey, const LineDetectionParams& p) {
+  const Derivatives d = derivatives(grey, p.sigma);
+  LinePoints lp;
+  lp.W = d.g.cols, lp.H = d.g.rows;
+  lp.at.assign(size_t(lp.W) * lp.H, -1);
+  // Row by row in parallel, then numbered in row order.
+  std::vector<std::vector<LinePoint>> rows(static_cast<size_t>(lp.H));
+  std::vector<std::vector<int>> row_x(static_cast<size_t>(lp.H));
+#pragma omp parallel for schedule(dynamic, 16)
+  for (int y = 0; y < lp.H; ++y) {
+    LinePoint q;
+    for (int x = 0; x < lp.W; ++x)
+      if (line_point_at(d, x, y, p, q)) {
+        rows[size_t(y)].push_back(q);
+        row_x[size_t(y)].push_back(x);
+      }
+  }
+  for (int y = 0; y < lp.H; ++y)
+    for (size_t k = 0; k < rows[size_t(y)].size(); ++k) {
+      lp.at[size_t(y) * lp.W + row_x[size_t(y)][k]] = int(lp.pts.size());
+      lp.pts.push_back(rows[size_t(y)][k]);
+    }
+  return lp;
+}
+
+// Linking: from the strongest unused point, the line is followed both ways to the best neighbouring
+// point ahead (within the 8-neighbourhood, along the direction, close and turning little).
+class Linker {
+ public:
+  Linker(const LinePoints& lp, const LineDetectionParams& p)
+      : lp_(lp), p_(p), chain_of_(lp.pts.size(), -1), cos_turn_(std::cos(p.max_link_turn)) {}
+
+  // The pieces linked from every point, strongest first; junctions met are appended to `junctions`.
+  std::vector<std::vector<Vec2>> pieces(std::vector<Vec2>& junctions) {
+    const auto& pts = lp_.pts;
+    std::vector<int> order(pts.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](int i, int j) { return pts[i].strength > pts[j].strength; });
+    std::vector<std::vector<Vec2>> out;
+    int chains = 0;
+    for (int s : order) {
+      if (chain_of_[size_t(s)] >= 0) continue;
+      const int id = chains++;
+      chain_of_[size_t(s)] = id;
+      const std::vector<int> ahead = follow(s, 1, id, junctions), behind = follow(s, -1, id, junctions);
+      std::vector<Vec2> poly;
+      poly.reserve(ahead.size() + behind.size() + 1);
+      for (auto it = behind.rbegin(); it != behind.rend(); ++it) poly.push_back(Vec2(pts[*it].x, pts[*it].y));
+      poly.push_back(Vec2(pts[s].x, pts[s].y));
+      for (int i : ahead) poly.push_back(Vec2(pts[i].x, pts[i].y));
+      if (poly.size() >= 2) out.push_back(std::move(poly));
+    }
+    return out;
+  }
+
+ private:
+  // The points linked from s along `sign` x its direction, in order; a junction ends the way.
+  std::vector<int> follow(int s, int sign, int id, std::vector<Vec2>& junctions) {
+    const auto& pts = lp_.pts;
+    std::vector<int> ext;
+    int cur = s;
+    double dirx = sign * pts[size_t(s)].dx, diry = sign * pts[size_t(s)].dy;
+    for (;;) {
+      bool other = false;
+      const int n = next_point(cur, dirx, diry, id, other);
+      if (n < 0) break;
+      if (other) {  // ran into another curve: a junction, this curve ends there
+        junctions.push_back(Vec2(pts[size_t(n)].x, pts[size_t(n)].y));
+        ext.push_back(n);
+        break;
+      }
+      chain_of_[size_t(n)] = id;
+      ext.push_back(n);
+      const double ndx = pts[size_t(n)].dx, ndy = pts[size_t(n)].dy;  // keep the orientation continuous
+      if (ndx * dirx + ndy * diry >= 0)
+        dirx = ndx, diry = ndy;
+      else
+        dirx = -ndx, diry = -ndy;
+      cur = n;
+    }
+    return ext;
+  }
+
+  // The best point ahead of point i along (dirx, diry): unused points first; when only points of
+  // other chains are ahead, the nearest of them is returned with `other` set (a junction).
+  int next_point(int i, double dirx, double diry, int chain, bool& other) const {
+    const LinePoint& q = lp_.pts[size_t(i)];
+    const int cx = int(std::lround(q.x)), cy = int(std::lround(q.y));
+    int best = -1, best_other = -1;
+    double best_cost = 1e300, best_other_cost = 1e300;
+    for (int oy = -1; oy <= 1; ++oy)
+      for (int ox = -1; ox <= 1; ++ox) {
+        const int x = cx + ox, y = cy + oy;
+        if ((!ox && !oy) || x < 0 || y < 0 || x >= lp_.W || y >= lp_.H) continue;
+        const int j = lp_.at[size_t(y) * lp_.W + x];
+        if (j < 0 || j == i || chain_of_[size_t(j)] == chain) continue;
+        const LinePoint& r = lp_.pts[size_t(j)];
+        const double vx = r.x - q.x, vy = r.y - q.y, dist = std::hypot(vx, vy);
+        if (dist > p_.max_link_gap || dist < 1e-6) continue;
+        if ((vx * dirx + vy * diry) / dist < 0.5) continue;  // ahead, within 60 degrees
+        const double turn = std::abs(r.dx * dirx + r.dy * diry);
+        if (turn < cos_turn_) continue;
+        const double cost = dist + 2 * (1 - turn);
+        if (chain_of_[size_t(j)] < 0) {
+          if (cost < best_cost) best_cost = cost, best = j;
+        } else if (cost < best_other_cost) {
+          best_other_cost = cost, best_other = j;
+        }
+      }
+    other = best < 0 && best_other >= 0;
+    return best >= 0 ? best : best_other;
+  }
+
+  const LinePoints& lp_;
+  const LineDetectionParams& p_;
+  std::vector<int> chain_of_;  // which chain a point was linked into
+  double cos_turn_;
+};
+
 }  // namespace
 
 DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionParams& p) {
@@ -233,133 +404,9 @@ DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionPa
   DrawingCurves out;
   const cv::Mat grey = drawing_grey(image);
   out.width = grey.cols, out.height = grey.rows;
-  cv::Mat g;
-  cv::GaussianBlur(grey, g, cv::Size(0, 0), p.sigma, p.sigma, cv::BORDER_REPLICATE);
-  // Derivatives of the smoothed image by central differences (Sobel 3x3, normalised).
-  cv::Mat rx, ry, rxx, rxy, ryy;
-  cv::Sobel(g, rx, CV_32F, 1, 0, 3, 1.0 / 8, 0, cv::BORDER_REPLICATE);
-  cv::Sobel(g, ry, CV_32F, 0, 1, 3, 1.0 / 8, 0, cv::BORDER_REPLICATE);
-  cv::Sobel(g, rxx, CV_32F, 2, 0, 3, 1.0 / 4, 0, cv::BORDER_REPLICATE);
-  cv::Sobel(g, ryy, CV_32F, 0, 2, 3, 1.0 / 4, 0, cv::BORDER_REPLICATE);
-  cv::Sobel(g, rxy, CV_32F, 1, 1, 3, 1.0 / 16, 0, cv::BORDER_REPLICATE);
-  const int W = g.cols, H = g.rows;
-  std::vector<int> at(size_t(W) * H, -1);  // pixel -> line point index
-  // Line points row by row in parallel, then numbered in row order.
-  std::vector<std::vector<LinePoint>> rows(static_cast<size_t>(H));
-  std::vector<std::vector<int>> row_x(static_cast<size_t>(H));
-#pragma omp parallel for schedule(dynamic, 16)
-  for (int y = 0; y < H; ++y) {
-    const float *px = rx.ptr<float>(y), *py = ry.ptr<float>(y), *pxx = rxx.ptr<float>(y), *pxy = rxy.ptr<float>(y),
-                *pyy = ryy.ptr<float>(y), *pg = g.ptr<float>(y);
-    for (int x = 0; x < W; ++x) {
-      if (pg[x] > p.max_intensity) continue;
-      // Largest eigenvalue of the Hessian and its eigenvector n (across the line).
-      const double a = pxx[x], b = pxy[x], c = pyy[x];
-      const double mean = 0.5 * (a + c), d = std::sqrt(0.25 * (a - c) * (a - c) + b * b);
-      const double lambda = mean + d;
-      if (lambda < p.min_strength) continue;
-      // Along a line the profile is flat: a dot of stippling (or a blot) curves both ways.
-      if (mean - d > kMaxAlongRatio * lambda) continue;
-      double nx, ny;
-      if (std::abs(b) > 1e-12)
-        nx = b, ny = lambda - a;
-      else if (a >= c)
-        nx = 1, ny = 0;
-      else
-        nx = 0, ny = 1;
-      const double nn = std::hypot(nx, ny);
-      nx /= nn, ny /= nn;
-      const double t = -(px[x] * nx + py[x] * ny) / lambda;  // to the profile's minimum along n
-      if (std::abs(t * nx) > 0.5 || std::abs(t * ny) > 0.5) continue;
-      rows[size_t(y)].push_back({float(x + t * nx), float(y + t * ny), float(-ny), float(nx), float(lambda)});
-      row_x[size_t(y)].push_back(x);
-    }
-  }
-  std::vector<LinePoint> pts;
-  for (int y = 0; y < H; ++y)
-    for (size_t k = 0; k < rows[size_t(y)].size(); ++k) {
-      at[size_t(y) * W + row_x[size_t(y)][k]] = int(pts.size());
-      pts.push_back(rows[size_t(y)][k]);
-    }
-  out.line_points = static_cast<long long>(pts.size());
-
-  // Linking: from the strongest unused point, follow the line both ways to the best neighbouring
-  // point ahead (within the 8-neighbourhood, along the direction, close and turning little).
-  std::vector<int> order(pts.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int i, int j) { return pts[i].strength > pts[j].strength; });
-  std::vector<int> chain_of(pts.size(), -1);  // which chain a point was linked into
-  const double cos_turn = std::cos(p.max_link_turn);
-  // The best point ahead of point i along (dirx, diry): unused points first; when only points of
-  // other chains are ahead, the nearest of them is returned with `other` set (a junction).
-  auto next_point = [&](int i, double dirx, double diry, int chain, bool& other) {
-    const LinePoint& q = pts[i];
-    const int cx = int(std::lround(q.x)), cy = int(std::lround(q.y));
-    int best = -1, best_other = -1;
-    double best_cost = 1e300, best_other_cost = 1e300;
-    other = false;
-    for (int oy = -1; oy <= 1; ++oy)
-      for (int ox = -1; ox <= 1; ++ox) {
-        if (!ox && !oy) continue;
-        const int x = cx + ox, y = cy + oy;
-        if (x < 0 || y < 0 || x >= W || y >= H) continue;
-        const int j = at[size_t(y) * W + x];
-        if (j < 0 || j == i || chain_of[size_t(j)] == chain) continue;
-        const double vx = pts[j].x - q.x, vy = pts[j].y - q.y, dist = std::hypot(vx, vy);
-        if (dist > p.max_link_gap || dist < 1e-6) continue;
-        if ((vx * dirx + vy * diry) / dist < 0.5) continue;  // ahead, within 60 degrees
-        const double turn = std::abs(pts[j].dx * dirx + pts[j].dy * diry);
-        if (turn < cos_turn) continue;
-        const double cost = dist + 2 * (1 - turn);
-        if (chain_of[size_t(j)] < 0) {
-          if (cost < best_cost) best_cost = cost, best = j;
-        } else if (cost < best_other_cost) {
-          best_other_cost = cost, best_other = j;
-        }
-      }
-    if (best >= 0) return best;
-    other = best_other >= 0;
-    return best_other;
-  };
-  int chains = 0;
-  std::vector<std::vector<Vec2>> pieces;
-  for (int s : order) {
-    if (chain_of[size_t(s)] >= 0) continue;
-    const int id = chains++;
-    chain_of[size_t(s)] = id;
-    std::vector<int> chain{s};
-    for (int side = 0; side < 2; ++side) {
-      std::vector<int> ext;
-      int cur = s;
-      double dirx = side ? -pts[s].dx : pts[s].dx, diry = side ? -pts[s].dy : pts[s].dy;
-      for (;;) {
-        bool other = false;
-        const int n = next_point(cur, dirx, diry, id, other);
-        if (n < 0) break;
-        if (other) {  // ran into another curve: a junction, this curve ends there
-          out.junctions.push_back(Vec2(pts[n].x, pts[n].y));
-          ext.push_back(n);
-          break;
-        }
-        chain_of[size_t(n)] = id;
-        ext.push_back(n);
-        const double ndx = pts[n].dx, ndy = pts[n].dy;  // keep the orientation continuous
-        if (ndx * dirx + ndy * diry >= 0)
-          dirx = ndx, diry = ndy;
-        else
-          dirx = -ndx, diry = -ndy;
-        cur = n;
-      }
-      if (side == 0)
-        chain.insert(chain.end(), ext.begin(), ext.end());
-      else
-        chain.insert(chain.begin(), ext.rbegin(), ext.rend());
-    }
-    std::vector<Vec2> poly;
-    poly.reserve(chain.size());
-    for (int i : chain) poly.push_back(Vec2(pts[i].x, pts[i].y));
-    if (poly.size() >= 2) pieces.push_back(std::move(poly));
-  }
+  const LinePoints lp = detect_line_points(grey, p);
+  out.line_points = static_cast<long long>(lp.pts.size());
+  std::vector<std::vector<Vec2>> pieces = Linker(lp, p).pieces(out.junctions);
   join_pieces(pieces, p);
   for (auto& poly : pieces) {
     double len = 0;

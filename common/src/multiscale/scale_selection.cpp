@@ -42,4 +42,14 @@ double select_scale(const std::vector<double>& t, const double* f, int stride, d
   return std::exp(std::clamp(xs, x0, x2));
 }
 
+ScaleBracket bracket_scale(const std::vector<double>& u, double x) {
+  const int n = static_cast<int>(u.size());
+  ScaleBracket b;
+  while (b.lower + 2 < n && u[b.lower + 1] < x) ++b.lower;
+  b.upper = std::min(b.lower + 1, n - 1);
+  const double span = u[b.upper] - u[b.lower];
+  b.weight = span > 0 ? std::clamp((x - u[b.lower]) / span, 0.0, 1.0) : 0.0;
+  return b;
+}
+
 }  // namespace reliefkit

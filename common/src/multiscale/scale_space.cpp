@@ -102,116 +102,56 @@ std::vector<int> diagonal_positions(const Eigen::SparseMatrix<double>& K) {
   return pos;
 }
 
-}  // namespace
-
-ScaleSpaceReport scale_space(const TriMesh& mesh, const std::vector<double>& sigmas, const ScaleSpaceOptions& opt,
-                             const std::function<void(int, const TriMesh&)>& visit) {
-  require_triangles(mesh);
-  for (size_t k = 0; k < sigmas.size(); ++k)
-    if (!(sigmas[k] > 0) || !std::isfinite(sigmas[k]) || (k > 0 && !(sigmas[k] > sigmas[k - 1])))
-      throw InputError("scale space: the scales must be positive, finite and increasing");
-  const int nv = mesh.n_vertices();
-  const MeshTopology own = opt.topology ? MeshTopology() : mesh_topology(mesh);
-  const MeshTopology& topo = opt.topology ? *opt.topology : own;
-  const LaplacianResult lap0 = cotangent_laplacian(mesh, topo);
-
+// The heat operator of one geometry, split into its interior and boundary-loop blocks, with the
+// figures of the cost model that chooses explicit or implicit steps per level.
+class Diffusion {
+ public:
   // Who is what: interior (no boundary neighbour, some area), boundary loop (two boundary
   // neighbours), fixed (the rest).
-  enum Kind : char { kInterior, kLoop, kFixed };
-  std::vector<char> kind(nv, kFixed);
-  std::vector<int> index(nv, -1);
-  Block inner, loop;
-  ScaleSpaceReport report;
-  for (int v = 0; v < nv; ++v) {
-    const int nb = topo.border.offset[v + 1] - topo.border.offset[v];
-    if (nb == 0 && lap0.mass[v] > 0) {
-      kind[v] = kInterior, index[v] = int(inner.vertex.size()), inner.vertex.push_back(v);
-    } else if (nb == 2) {
-      kind[v] = kLoop, index[v] = int(loop.vertex.size()), loop.vertex.push_back(v);
-    } else {
-      ++report.fixed_vertices;
+  Diffusion(const Surface& surface, ScaleSpaceReport& report)
+      : topo_(surface.topology()), initial_mass_(surface.laplacian().mass) {
+    const int nv = surface.n_vertices();
+    kind_.assign(size_t(nv), kFixed);
+    index_.assign(size_t(nv), -1);
+    for (int v = 0; v < nv; ++v) {
+      const int nb = topo_.border.offset[v + 1] - topo_.border.offset[v];
+      if (nb == 0 && initial_mass_[v] > 0) {
+        kind_[v] = kInterior, index_[v] = int(inner_.vertex.size()), inner_.vertex.push_back(v);
+      } else if (nb == 2) {
+        kind_[v] = kLoop, index_[v] = int(loop_.vertex.size()), loop_.vertex.push_back(v);
+      } else {
+        ++report.fixed_vertices;
+      }
     }
+    report.boundary_vertices = static_cast<int>(loop_.vertex.size());
   }
-  report.boundary_vertices = static_cast<int>(loop.vertex.size());
 
-  // The operator of a geometry: the blocks' stiffness and mass, their system matrices' structure,
-  // and the figures of the cost model.
-  Eigen::SparseMatrix<double> inner_A, loop_A;
-  std::vector<int> inner_diag, loop_diag;
-  double bound = 0, stiff = 0;
-  auto assemble = [&](const TriMesh& geometry, const LaplacianResult& lap) {
-    // Interior block: K = -L restricted; the weights towards loop and fixed vertices are known terms.
-    {
-      const int n = static_cast<int>(inner.vertex.size());
-      std::vector<Eigen::Triplet<double>> trip;
-      const Eigen::VectorXd old_mass = inner.mass;
-      inner.mass.resize(n);
-      inner.known.assign(size_t(n), {});
-      for (int i = 0; i < n; ++i) {
-        const int v = inner.vertex[i];
-        // A vertex whose area vanished on the way keeps its last one (the system stays definite).
-        inner.mass[i] = lap.mass[v] > 0 ? lap.mass[v] : old_mass.size() == n ? old_mass[i] : lap0.mass[v];
-        for (Eigen::SparseMatrix<double>::InnerIterator it(lap.L, v); it; ++it) {
-          const int u = static_cast<int>(it.row());
-          if (kind[u] == kInterior) trip.emplace_back(i, index[u], -it.value());
-          else inner.known[i].push_back({u, -it.value()});  // a stiffness entry, like the loop block's
-        }
-      }
-      inner.K.resize(n, n);
-      inner.K.setFromTriplets(trip.begin(), trip.end());
-    }
-    // Loop block: 1-D stiffness along the boundary polylines, weight 1 / edge length, mass half the
-    // adjacent boundary edges.
-    {
-      const int n = static_cast<int>(loop.vertex.size());
-      std::vector<Eigen::Triplet<double>> trip;
-      loop.mass.setZero(n);
-      loop.known.assign(size_t(n), {});
-      for (int i = 0; i < n; ++i) {
-        const int v = loop.vertex[i];
-        double diag = 0;
-        for (int k = topo.border.offset[v]; k < topo.border.offset[v + 1]; ++k) {
-          const int u = topo.border.vertex[k];
-          const double len = (geometry.vertices[v] - geometry.vertices[u]).norm();
-          if (!(len > 0)) continue;
-          loop.mass[i] += 0.5 * len;
-          diag += 1 / len;
-          if (kind[u] == kLoop) trip.emplace_back(i, index[u], -1 / len);
-          else loop.known[i].push_back({u, -1 / len});  // K_known has the sign of the stiffness
-        }
-        trip.emplace_back(i, i, diag);
-        if (!(loop.mass[i] > 0)) loop.mass[i] = 1;  // a loop of coincident points: stays put
-      }
-      loop.K.resize(n, n);
-      loop.K.setFromTriplets(trip.begin(), trip.end());
-    }
-    inner.K.makeCompressed();
-    loop.K.makeCompressed();
-    inner_A = inner.K, loop_A = loop.K;
-    inner_diag = diagonal_positions(inner.K), loop_diag = diagonal_positions(loop.K);
+  // The operator of a geometry (its Laplacian `lap`): the blocks' stiffness and mass, their system
+  // matrices' structure, and the cost model's figures.
+  void assemble(const TriMesh& geometry, const LaplacianResult& lap) {
+    assemble_interior(lap);
+    assemble_loop(geometry);
+    inner_.K.makeCompressed();
+    loop_.K.makeCompressed();
+    inner_A_ = inner_.K, loop_A_ = loop_.K;
+    inner_diag_ = diagonal_positions(inner_.K), loop_diag_ = diagonal_positions(loop_.K);
     // Cost model of one level, in sparse products: explicit steps need dtau * bound of them;
     // implicit ones about 2 per conjugate-gradient iteration (capped where Cholesky takes over).
-    bound = std::max(gershgorin_bound(inner), gershgorin_bound(loop));
-    stiff = std::max(median_stiffness(inner), median_stiffness(loop));
-  };
-  assemble(mesh, lap0);
+    bound_ = std::max(gershgorin_bound(inner_), gershgorin_bound(loop_));
+    stiff_ = std::max(median_stiffness(inner_), median_stiffness(loop_));
+  }
 
-  TriMesh work;
-  work.faces = mesh.faces;
-  work.vertices = mesh.vertices;
-  std::vector<Vec3> scratch;
-  double tau = 0;
-  const int substeps = std::max(1, opt.substeps);
-  for (size_t level = 0; level < sigmas.size(); ++level) {
-    if (opt.progress) opt.progress(int(100 * level / sigmas.size()), "Scale space");
-    if (level > 0 && opt.reweight) assemble(work, cotangent_laplacian(work, topo));
-    const double target = 0.5 * sigmas[level] * sigmas[level];
+  // Diffuses the positions x from time tau to target (tau < target), explicitly or implicitly,
+  // whichever the cost model says is cheaper (or as `opt.stepping` asks).
+  void advance(double tau, double target, const ScaleSpaceOptions& opt, std::vector<Vec3>& x,
+               ScaleSpaceReport& report) {
     // `substeps` steps per doubling of the diffusion time (at least that many per level): a level
     // far above the previous one is not crossed by a few huge steps.
+    const int substeps = std::max(1, opt.substeps);
     const int steps = tau > 0 ? std::max(substeps, int(std::ceil(substeps * std::log2(target / tau)))) : substeps;
     const double dtau = (target - tau) / steps;
-    const double explicit_cost = std::ceil((target - tau) * bound);
-    const double implicit_cost = steps * 2.0 * std::min(kDirectAboveIterations, 5.5 * std::sqrt(1 + dtau * stiff));
+    const double explicit_cost = std::ceil((target - tau) * bound_);
+    const double implicit_cost = steps * 2.0 * std::min(kDirectAboveIterations, 5.5 * std::sqrt(1 + dtau * stiff_));
     const bool use_explicit = opt.stepping == ScaleSpaceOptions::Stepping::Explicit ||
                               (opt.stepping == ScaleSpaceOptions::Stepping::Auto && explicit_cost <= implicit_cost &&
                                explicit_cost < 1e7);
@@ -220,27 +160,114 @@ ScaleSpaceReport scale_space(const TriMesh& mesh, const std::vector<double>& sig
       const long long n = std::max(1LL, static_cast<long long>(explicit_cost));
       const double h = (target - tau) / double(n);
       for (long long s = 0; s < n; ++s) {  // the loop first: the interior reads it
-        explicit_steps(loop, h, 1, work.vertices, scratch);
-        explicit_steps(inner, h, 1, work.vertices, scratch);
+        explicit_steps(loop_, h, 1, x, scratch_);
+        explicit_steps(inner_, h, 1, x, scratch_);
       }
       report.explicit_steps += n;
-    } else {
-      for (int s = 0; s < steps; ++s) {
-        for (int which = 0; which < 2; ++which) {  // the loop first: the interior takes it as known
-          const Block& b = which == 0 ? loop : inner;
-          SolveReport rep = step(b, dtau, which == 0 ? loop_A : inner_A, which == 0 ? loop_diag : inner_diag,
-                                 work.vertices, opt);
-          if (b.vertex.empty()) continue;
-          report.converged = report.converged && rep.converged;
-          report.solves.push_back(std::move(rep));
-        }
-      }
-      report.implicit_steps += steps;
+      return;
     }
+    for (int s = 0; s < steps; ++s) {
+      for (int which = 0; which < 2; ++which) {  // the loop first: the interior takes it as known
+        const Block& b = which == 0 ? loop_ : inner_;
+        SolveReport rep = step(b, dtau, which == 0 ? loop_A_ : inner_A_, which == 0 ? loop_diag_ : inner_diag_, x, opt);
+        if (b.vertex.empty()) continue;
+        report.converged = report.converged && rep.converged;
+        report.solves.push_back(std::move(rep));
+      }
+    }
+    report.implicit_steps += steps;
+  }
+
+ private:
+  enum Kind : char { kInterior, kLoop, kFixed };
+
+  // Interior block: K = -L restricted; the weights towards loop and fixed vertices are known terms.
+  void assemble_interior(const LaplacianResult& lap) {
+    const int n = static_cast<int>(inner_.vertex.size());
+    std::vector<Eigen::Triplet<double>> trip;
+    const Eigen::VectorXd old_mass = inner_.mass;
+    inner_.mass.resize(n);
+    inner_.known.assign(size_t(n), {});
+    for (int i = 0; i < n; ++i) {
+      const int v = inner_.vertex[i];
+      // A vertex whose area vanished on the way keeps its last one (the system stays definite).
+      inner_.mass[i] = lap.mass[v] > 0 ? lap.mass[v] : old_mass.size() == n ? old_mass[i] : initial_mass_[v];
+      for (Eigen::SparseMatrix<double>::InnerIterator it(lap.L, v); it; ++it) {
+        const int u = static_cast<int>(it.row());
+        if (kind_[u] == kInterior) trip.emplace_back(i, index_[u], -it.value());
+        else inner_.known[i].push_back({u, -it.value()});  // a stiffness entry, like the loop block's
+      }
+    }
+    inner_.K.resize(n, n);
+    inner_.K.setFromTriplets(trip.begin(), trip.end());
+  }
+
+  // Loop block: 1-D stiffness along the boundary polylines, weight 1 / edge length, mass half the
+  // adjacent boundary edges.
+  void assemble_loop(const TriMesh& geometry) {
+    const int n = static_cast<int>(loop_.vertex.size());
+    std::vector<Eigen::Triplet<double>> trip;
+    loop_.mass.setZero(n);
+    loop_.known.assign(size_t(n), {});
+    for (int i = 0; i < n; ++i) {
+      const int v = loop_.vertex[i];
+      double diag = 0;
+      for (int k = topo_.border.offset[v]; k < topo_.border.offset[v + 1]; ++k) {
+        const int u = topo_.border.vertex[k];
+        const double len = (geometry.vertices[v] - geometry.vertices[u]).norm();
+        if (!(len > 0)) continue;
+        loop_.mass[i] += 0.5 * len;
+        diag += 1 / len;
+        if (kind_[u] == kLoop) trip.emplace_back(i, index_[u], -1 / len);
+        else loop_.known[i].push_back({u, -1 / len});  // K_known has the sign of the stiffness
+      }
+      trip.emplace_back(i, i, diag);
+      if (!(loop_.mass[i] > 0)) loop_.mass[i] = 1;  // a loop of coincident points: stays put
+    }
+    loop_.K.resize(n, n);
+    loop_.K.setFromTriplets(trip.begin(), trip.end());
+  }
+
+  const MeshTopology& topo_;
+  const Eigen::VectorXd& initial_mass_;  // the input's vertex areas (the run's Surface keeps them)
+  std::vector<char> kind_;
+  std::vector<int> index_;
+  Block inner_, loop_;
+  Eigen::SparseMatrix<double> inner_A_, loop_A_;
+  std::vector<int> inner_diag_, loop_diag_;
+  double bound_ = 0, stiff_ = 0;
+  std::vector<Vec3> scratch_;
+};
+
+}  // namespace
+
+ScaleSpaceReport scale_space(const Surface& surface, const std::vector<double>& sigmas, const ScaleSpaceOptions& opt,
+                             const ScaleSpaceVisitor& visit) {
+  surface.require_triangles();
+  for (size_t k = 0; k < sigmas.size(); ++k)
+    if (!(sigmas[k] > 0) || !std::isfinite(sigmas[k]) || (k > 0 && !(sigmas[k] > sigmas[k - 1])))
+      throw InputError("scale space: the scales must be positive, finite and increasing");
+  ScaleSpaceReport report;
+  Diffusion diffusion(surface, report);
+  diffusion.assemble(surface.mesh(), surface.laplacian());
+  Surface level = surface;  // the last level reached
+  std::vector<Vec3> x = surface.mesh().vertices;
+  double tau = 0;
+  for (size_t k = 0; k < sigmas.size(); ++k) {
+    if (opt.progress) opt.progress(int(100 * k / sigmas.size()), "Scale space");
+    if (k > 0 && opt.reweight) diffusion.assemble(level.mesh(), level.laplacian());
+    const double target = 0.5 * sigmas[k] * sigmas[k];
+    diffusion.advance(tau, target, opt, x, report);
     tau = target;
-    visit(static_cast<int>(level), work);
+    level = surface.with_positions(x);
+    visit(static_cast<int>(k), level);
   }
   return report;
+}
+
+ScaleSpaceReport scale_space(const TriMesh& mesh, const std::vector<double>& sigmas, const ScaleSpaceOptions& opt,
+                             const ScaleSpaceVisitor& visit) {
+  return scale_space(Surface::borrow(mesh), sigmas, opt, visit);
 }
 
 }  // namespace reliefkit

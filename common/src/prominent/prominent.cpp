@@ -37,33 +37,51 @@ void ProminentFieldParams::validate() const {
   require_range(constraint_weight, "Constraint weight", 1e-6, 1e6);
 }
 
-void solve_prominent_field(const TriMesh& mesh, const MeshTopology& topology, const std::vector<Vec3>& normal,
-                           const std::vector<Vec3>& e1, const std::vector<Vec3>& target,
-                           const std::vector<double>& beta, double weight, FieldRepresentation representation,
-                           ProminentFieldResult& out) {
-  const int nv = mesh.n_vertices();
-  const bool line = representation == FieldRepresentation::Line;
-  const double k = line ? 2.0 : 1.0;
-  LaplacianOptions lo;
-  lo.clamp_negative = true;
-  const LaplacianResult lap = cotangent_laplacian(mesh, topology, lo);
-  const Eigen::SparseMatrix<double>& L = lap.L;
-  // The 2n x 2n real form of the Hermitian connection Laplacian plus the constraint term.
-  Eigen::SparseMatrix<double> A(2 * nv, 2 * nv);
+namespace {
+
+// The sparsity of the 2n x 2n real form of a complex n x n matrix with L's pattern: each entry a
+// 2 x 2 block, so column 2p and 2p+1 each hold twice column p's entries.
+std::vector<int> doubled_outer(const Eigen::SparseMatrix<double>& L) {
+  const int nv = int(L.cols());
   std::vector<int> outer(2 * nv + 1, 0);
   for (int p = 0; p < nv; ++p) {
     const int n = int(L.outerIndexPtr()[p + 1] - L.outerIndexPtr()[p]);
     outer[2 * p + 1] = outer[2 * p] + 2 * n;
     outer[2 * p + 2] = outer[2 * p + 1] + 2 * n;
   }
-  A.resizeNonZeros(outer[2 * nv]);
-  std::copy(outer.begin(), outer.end(), A.outerIndexPtr());
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * nv), guess(2 * nv);
-  std::vector<Vec3> e2(nv);
-#pragma omp parallel for schedule(static)
-  for (int p = 0; p < nv; ++p) e2[p] = normal[p].cross(e1[p]);
-#pragma omp parallel for schedule(dynamic, 4096)
-  for (int p = 0; p < nv; ++p) {
+  return outer;
+}
+
+// The smooth-field system of eqs. 6.3 / 6.6: the Hermitian connection Laplacian plus the
+// constraint term, written as a real symmetric positive-definite system of twice the size.
+struct FieldSystem {
+  const LaplacianResult& lap;
+  const std::vector<Vec3>& normal;
+  const std::vector<Vec3>& e1;
+  std::vector<Vec3> e2;
+  const std::vector<Vec3>& target;
+  const std::vector<double>& beta;
+  double weight;
+  double k;  // 2 for a line field (the angle doubled), 1 for a vector field
+  Eigen::SparseMatrix<double> A;
+  Eigen::VectorXd rhs, guess;
+
+  // The rotation T_jp that turns p's frame into j's (the angle of p's e1 seen in j's frame),
+  // applied k times, as (cos, sin); false where the pair is not coupled.
+  bool rotation(int p, int j, double& cs, double& sn) const {
+    if (!(normal[p].dot(normal[j]) > kMinNormalCos)) return false;
+    const Vec3 u = transport(e1[p], normal[p], normal[j]);
+    cs = u.dot(e1[j]), sn = u.dot(e2[j]);
+    const double len = std::hypot(cs, sn);
+    if (!(len > 0)) return false;
+    cs /= len, sn /= len;
+    if (k == 2) std::tie(cs, sn) = std::make_pair(cs * cs - sn * sn, 2 * cs * sn);  // the angle doubled
+    return true;
+  }
+
+  // Columns 2p and 2p+1 of A, and p's entries of the right-hand side and the starting guess.
+  void fill(int p, const std::vector<int>& outer) {
+    const Eigen::SparseMatrix<double>& L = lap.L;
     const auto* rows = L.innerIndexPtr() + L.outerIndexPtr()[p];
     const auto* vals = L.valuePtr() + L.outerIndexPtr()[p];
     const int n = int(L.outerIndexPtr()[p + 1] - L.outerIndexPtr()[p]);
@@ -81,19 +99,11 @@ void solve_prominent_field(const TriMesh& mesh, const MeshTopology& topology, co
         diag_at = q;
         continue;
       }
-      double w = vals[q];
-      double re = 0, im = 0;
-      if (w > 0 && std::isfinite(w) && normal[p].dot(normal[j]) > kMinNormalCos) {
-        // H_jp = -w T_jp: T_jp turns p's frame into j's (the angle of p's e1 seen in j's frame).
-        const Vec3 u = transport(e1[p], normal[p], normal[j]);
-        double cs = u.dot(e1[j]), sn = u.dot(e2[j]);
-        const double len = std::hypot(cs, sn);
-        if (len > 0) {
-          cs /= len, sn /= len;
-          if (line) std::tie(cs, sn) = std::make_pair(cs * cs - sn * sn, 2 * cs * sn);  // the angle doubled
-          re = -w * cs, im = -w * sn;
-          diag += w;
-        }
+      const double w = vals[q];
+      double re = 0, im = 0, cs, sn;
+      if (w > 0 && std::isfinite(w) && rotation(p, j, cs, sn)) {  // H_jp = -w T_jp
+        re = -w * cs, im = -w * sn;
+        diag += w;
       }
       va[2 * q] = re, va[2 * q + 1] = im;    // column 2p: (a, b)
       vb[2 * q] = -im, vb[2 * q + 1] = re;   // column 2p+1: (-b, a)
@@ -111,65 +121,101 @@ void solve_prominent_field(const TriMesh& mesh, const MeshTopology& topology, co
     rhs[2 * p] = mu * cx, rhs[2 * p + 1] = mu * cy;
     guess[2 * p] = beta[p] * cx, guess[2 * p + 1] = beta[p] * cy;  // free vertices start at 0
   }
+
+  void build() {
+    const int nv = int(lap.L.cols());
+    e2.resize(nv);
+#pragma omp parallel for schedule(static)
+    for (int p = 0; p < nv; ++p) e2[p] = normal[p].cross(e1[p]);
+    const std::vector<int> outer = doubled_outer(lap.L);
+    A.resize(2 * nv, 2 * nv);
+    A.resizeNonZeros(outer[2 * nv]);
+    std::copy(outer.begin(), outer.end(), A.outerIndexPtr());
+    rhs = Eigen::VectorXd::Zero(2 * nv);
+    guess.resize(2 * nv);
+#pragma omp parallel for schedule(dynamic, 4096)
+    for (int p = 0; p < nv; ++p) fill(p, outer);
+  }
+
+  // The field from the solution z: its angle divided by k in each frame, unit; where |z| is
+  // (nearly) zero no feature reaches and the field is the target.
+  void read_field(const Eigen::MatrixXd& X, ProminentFieldResult& out) const {
+    const int nv = int(e2.size());
+    sized(out.field, size_t(nv), Vec3(Vec3::Zero()));
+    sized(out.strength, size_t(nv));
+    long long unreached = 0;
+#pragma omp parallel for schedule(static) reduction(+ : unreached)
+    for (int p = 0; p < nv; ++p) {
+      const double x = X(2 * p, 0), y = X(2 * p + 1, 0);
+      const double s = std::hypot(x, y);
+      out.strength[p] = std::isfinite(s) ? s : 0;
+      if (!(s > 1e-3)) {
+        out.field[p] = target[p];
+        ++unreached;
+        continue;
+      }
+      const double phi = std::atan2(y, x) / k;
+      out.field[p] = std::cos(phi) * e1[p] + std::sin(phi) * e2[p];
+    }
+    out.unreached = unreached;
+  }
+};
+
+}  // namespace
+
+void solve_prominent_field(const Surface& surface, const std::vector<Vec3>& normal, const std::vector<Vec3>& e1,
+                           const std::vector<Vec3>& target, const std::vector<double>& beta, double weight,
+                           FieldRepresentation representation, ProminentFieldResult& out) {
+  LaplacianOptions lo;
+  lo.clamp_negative = true;  // the same Laplacian as the base normals': the run computes it once
+  FieldSystem sys{surface.laplacian(lo), normal, e1, {}, target, beta, weight,
+                  representation == FieldRepresentation::Line ? 2.0 : 1.0, {}, {}, {}};
+  sys.build();
   SolverOptions so;
   so.tolerance = kFieldTolerance;
   so.max_iterations = 2000;
   so.label = "Prominent field";
-  Eigen::MatrixXd X = guess;
-  out.solve = solve_spd(A, rhs, X, so);
-  sized(out.field, size_t(nv), Vec3(Vec3::Zero()));
-  sized(out.strength, size_t(nv));
-  long long unreached = 0;
-#pragma omp parallel for schedule(static) reduction(+ : unreached)
-  for (int p = 0; p < nv; ++p) {
-    const double x = X(2 * p, 0), y = X(2 * p + 1, 0);
-    const double s = std::hypot(x, y);
-    out.strength[p] = std::isfinite(s) ? s : 0;
-    if (!(s > 1e-3)) {
-      out.field[p] = target[p];
-      ++unreached;
-      continue;
-    }
-    const double phi = std::atan2(y, x) / k;
-    out.field[p] = std::cos(phi) * e1[p] + std::sin(phi) * e2[p];
-  }
-  out.unreached = unreached;
+  Eigen::MatrixXd X = sys.guess;
+  out.solve = solve_spd(sys.A, sys.rhs, X, so);
+  sys.read_field(X, out);
 }
 
-ProminentFieldResult compute_prominent_field(const TriMesh& mesh, const ProminentFieldParams& p) {
-  p.validate();
-  ProminentFieldResult out;
-  // Chapter 4's detector gives the curvature, the base normals, the relief direction g with its
-  // step-model fit and the tilt thresholds (its curves are not used).
+namespace {
+
+// The relief-edge options the prominent field reads chapter 4's fields with.
+ReliefEdgeParams relief_edge_params(const ProminentFieldParams& p) {
   ReliefEdgeParams rp;
   rp.estimator = p.estimator;
   rp.presmoothing = p.presmoothing;
   rp.base_scale = p.base_scale;
   rp.progress = p.progress;
-  ReliefEdgeResult re = compute_relief_edges(mesh, rp);
-  const auto t0 = std::chrono::steady_clock::now();
-  if (p.progress) p.progress(95, "Prominent field");
-  static_cast<ScaledCurvature&>(out) = static_cast<ScaledCurvature&>(re);
+  return rp;
+}
+
+// What the prominent field keeps of chapter 4's per-vertex fields.
+void take_relief_fields(ReliefEdgeFields&& re, ProminentFieldResult& out) {
+  static_cast<ScaledCurvature&>(out) = std::move(static_cast<ScaledCurvature&>(re));
   out.base = std::move(re.base);
   out.base_scale = re.base_scale;
   out.feature_width = re.feature_width;
   out.relief_direction = std::move(re.direction);
   out.tilt = std::move(re.angle);
-  out.tilt_threshold = re.weak_angle;
-  const Curvature& c = out.curvature;
-  const int nv = mesh.n_vertices();
-  const double h = out.scale.edge;
+  out.fit_error = std::move(re.fit_error);
+}
 
+// Per vertex: the prominent direction r_p (eq. 6.2) and whether p is a feature point (eq. 6.4,
+// with the thresholds scaled by 2 / theta; see ProminentFieldParams::theta).
+void prominent_directions(const ProminentFieldParams& p, ProminentFieldResult& out) {
+  const Curvature& c = out.curvature;
+  const int nv = static_cast<int>(c.k1.size());
   // kappa_0: the curvature of the scan's most curved tenth (see kFeatureCurvaturePercentile).
   std::vector<double> maxabs(nv);
   for (int v = 0; v < nv; ++v) maxabs[v] = std::max(std::abs(c.k1[v]), std::abs(c.k2[v]));
   out.curvature_threshold = percentile(counted_values(maxabs, out.scale.counts), kFeatureCurvaturePercentile);
-
   sized(out.principal, size_t(nv), Vec3(Vec3::Zero()));
   sized(out.prominent, size_t(nv), Vec3(Vec3::Zero()));
   sized(out.alpha, size_t(nv));
   sized(out.beta, size_t(nv));
-  sized(out.fit_error, size_t(nv));
   long long ridge_points = 0, edge_points = 0;
   const double k0 = out.curvature_threshold, relax = 2 / p.theta;
 #pragma omp parallel for schedule(static) reduction(+ : ridge_points, edge_points)
@@ -182,27 +228,48 @@ ProminentFieldResult compute_prominent_field(const TriMesh& mesh, const Prominen
     Vec3 t = first ? c.dir1[v] : c.dir2[v];
     if (t.dot(g) < 0) t = -t;
     out.principal[v] = t;
-    // eq. 6.2
-    const double a = (big < k0 || ratio < 2) ? 1.0 : ratio > 4 ? 0.0 : (4 - ratio) / 2;
+    const double a = (big < k0 || ratio < 2) ? 1.0 : ratio > 4 ? 0.0 : (4 - ratio) / 2;  // eq. 6.2
     out.alpha[v] = a;
     Vec3 r = a * g + (1 - a) * t;
     const double rn = r.norm();
     out.prominent[v] = rn > 1e-12 ? Vec3(r / rn) : g;
-    // eq. 6.4, with the thresholds scaled by 2 / theta (see ProminentFieldParams::theta).
-    out.fit_error[v] = re.fit_error[v];
-    const bool ridge = ratio > 2 && big > k0 * relax;
-    const bool edge = re.fit_error[v] <= kFeatureFitError && out.tilt[v] >= out.tilt_threshold * relax;
+    const bool ridge = ratio > 2 && big > k0 * relax;  // eq. 6.4
+    const bool edge = out.fit_error[v] <= kFeatureFitError && out.tilt[v] >= out.tilt_threshold * relax;
     ridge_points += ridge;
     edge_points += !ridge && edge;
     out.beta[v] = (ridge || edge) ? 1.0 : 0.0;
   }
   out.ridge_points = ridge_points;
   out.edge_points = edge_points;
-  solve_prominent_field(mesh, *out.topology, c.normal, c.dir1, out.prominent, out.beta,
-                        p.constraint_weight / (h * h), p.representation, out);
+}
+
+}  // namespace
+
+ProminentFieldResult compute_prominent_field(const TriMesh& mesh, const ProminentFieldParams& p) {
+  return compute_prominent_field(Surface::borrow(mesh), p);
+}
+
+ProminentFieldResult compute_prominent_field(const Surface& surface, const ProminentFieldParams& p) {
+  p.validate();
+  // Chapter 4's per-vertex fields give the curvature, the base normals and the relief direction g
+  // with its step-model fit; a relief-edge point tilts at least the weak hysteresis tilt, automatic
+  // from the zero crossings of G (no curves are selected).
+  const ReliefEdgeParams rp = relief_edge_params(p);
+  ReliefEdgeFields re = compute_relief_edge_fields(surface, rp);
+  const double weak_tilt = relief_edge_thresholds(surface, re, relief_edge_crossings(surface, re), rp).weak_angle;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (p.progress) p.progress(95, "Prominent field");
+  ProminentFieldResult out;
+  take_relief_fields(std::move(re), out);
+  out.tilt_threshold = weak_tilt;
+  prominent_directions(p, out);
+  const Curvature& c = out.curvature;
+  const double h = out.scale.edge;
+  solve_prominent_field(surface, c.normal, c.dir1, out.prominent, out.beta, p.constraint_weight / (h * h),
+                        p.representation, out);
   if (p.representation == FieldRepresentation::Line) {  // lines have no sign: show them up the relief
 #pragma omp parallel for schedule(static)
-    for (int v = 0; v < nv; ++v)
+    for (int v = 0; v < surface.n_vertices(); ++v)
       if (out.field[v].dot(out.relief_direction[v]) < 0) out.field[v] = -out.field[v];
   }
   out.field_seconds = seconds_since(t0);
@@ -305,141 +372,207 @@ std::vector<Vec3> bilateral_pass(const TriMesh& mesh, const MeshTopology& topolo
   return out;
 }
 
-EnhanceResult enhance_relief(const TriMesh& mesh, const EnhanceParams& p) {
-  p.validate();
-  EnhanceResult out;
-  out.field = compute_prominent_field(mesh, p.field);
-  const ProminentFieldResult& f = out.field;
-  const MeshTopology& topo = *f.topology;
-  const int nv = mesh.n_vertices();
-  const double h = f.scale.edge;
-  p.spatial_scale.check("Smoothing scale sigma_c", 0.1, 100, h);
-  out.spatial_scale = p.spatial_scale.resolve(h, EnhanceParams::kDefaultSpatialEdges * h);
-  out.extremum_radius = std::max(2 * out.spatial_scale, kExtremumWidths * f.feature_width);
+namespace {
 
-  // Step 1: bilateral filter along the prominent field.
-  auto t0 = std::chrono::steady_clock::now();
-  std::vector<Vec3> pos = mesh.vertices;
+// Step 1: the bilateral filter along the prominent field, bilateral_iterations times.
+std::vector<Vec3> bilateral_steps(const Surface& surface, const EnhanceParams& p, const EnhanceResult& out) {
+  std::vector<Vec3> pos = surface.mesh().vertices;
   for (int it = 0; it < p.bilateral_iterations; ++it) {
     if (p.progress) p.progress(it * 30 / std::max(1, p.bilateral_iterations), "Bilateral filter");
-    pos = bilateral_pass(mesh, topo, pos, out.spatial_scale, p.prominent_term ? &f.field : nullptr);
+    pos = bilateral_pass(surface.mesh(), surface.topology(), pos, out.spatial_scale,
+                         p.prominent_term ? &out.field.field : nullptr);
   }
-  out.bilateral = pos;
-  out.bilateral_seconds = seconds_since(t0);
+  return pos;
+}
 
-  // Step 2: inverse-curvature flow along the prominent direction, each vertex moving along its
-  // base normal and stopping at the extremum of the heights (over its base tangent plane) of its
-  // neighbourhood on the step-1 surface.
-  t0 = std::chrono::steady_clock::now();
-  const std::vector<Vec3>& nb = f.base.normal;
-  std::vector<double> lo(nv, 0), hi(nv, 0);
+// Step 2's per-vertex state: each vertex moves along its base normal by u, between lo and hi.
+struct FlowState {
+  std::vector<double> lo, hi;   // the stopping rule's heights (then the curvature caps), along the base normal
+  std::vector<double> near;     // where the flow acts: near feature points, in [0, 1]
+  std::vector<double> u;        // height change along the base normal
+  std::vector<char> stopped;
+  std::vector<char> capped;     // bit 0: hi is the curvature cap, bit 1: lo is
+};
+
+// The flow's start: each vertex may move up to the extremum of the heights (over its base tangent
+// plane) of its neighbourhood on the step-1 surface, and only near feature points.
+FlowState flow_start(const Surface& surface, const EnhanceResult& out) {
+  const MeshTopology& topo = surface.topology();
+  const std::vector<Vec3>& nb = out.field.base.normal;
+  const std::vector<Vec3>& pos = out.bilateral;
+  const int nv = surface.n_vertices();
+  FlowState s;
+  s.lo.assign(nv, 0), s.hi.assign(nv, 0);
 #pragma omp parallel
   {
     std::vector<int> mark(nv, -1), queue;
 #pragma omp for schedule(dynamic, 1024)
     for (int v = 0; v < nv; ++v)
-      for_each_near(topo.ring, out.bilateral, v, out.extremum_radius, mark, v, queue, [&](int j, double) {
-        const double hj = nb[v].dot(out.bilateral[j] - out.bilateral[v]);
-        lo[v] = std::min(lo[v], hj), hi[v] = std::max(hi[v], hj);
+      for_each_near(topo.ring, pos, v, out.extremum_radius, mark, v, queue, [&](int j, double) {
+        const double hj = nb[v].dot(pos[j] - pos[v]);
+        s.lo[v] = std::min(s.lo[v], hj), s.hi[v] = std::max(s.hi[v], hj);
       });
   }
-  // Where the flow acts: near feature points (beta diffused over sigma_c, in [0, 1]).
-  std::vector<double> near = f.beta;
-  diffuse(mesh, topo.ring, out.spatial_scale, near);
-  for (auto& x : near) x = std::clamp(2 * x, 0.0, 1.0);
-  std::vector<double> u(nv, 0);  // height change along the base normal
-  std::vector<char> stopped(nv, 0);
+  s.near = out.field.beta;  // beta diffused over sigma_c
+  diffuse(surface.mesh(), topo.ring, out.spatial_scale, s.near);
+  for (auto& x : s.near) x = std::clamp(2 * x, 0.0, 1.0);
+  s.u.assign(nv, 0);
+  s.stopped.assign(nv, 0);
+  s.capped.assign(nv, 0);
   // Boundary vertices' one-sided curvature is no guide: they stay. So do vertices tilted more than
   // kFlowMaxTilt against the base: there the base is no ground under a relief but a part thinner
   // than the base scale (the bunny's ears, the statuette's arms), and moving along its normal
   // sheared the surface into creases.
   const double min_cos = std::cos(kFlowMaxTilt);
   for (int v = 0; v < nv; ++v)
-    if (near[v] < 0.01 || topo.border.offset[v + 1] > topo.border.offset[v] ||
-        f.curvature.normal[v].dot(nb[v]) < min_cos)
-      stopped[v] = 1;
-  TriMesh cur;
-  cur.faces = mesh.faces;
+    if (s.near[v] < 0.01 || topo.border.offset[v + 1] > topo.border.offset[v] ||
+        out.field.curvature.normal[v].dot(nb[v]) < min_cos)
+      s.stopped[v] = 1;
+  return s;
+}
+
+// The positions after the flow's height changes so far.
+std::vector<Vec3> flow_positions(const EnhanceResult& out, const std::vector<double>& u) {
+  const std::vector<Vec3>& nb = out.field.base.normal;
+  std::vector<Vec3> pos;
+  sized(pos, u.size(), Vec3(Vec3::Zero()));
+  for (size_t v = 0; v < u.size(); ++v) pos[v] = out.bilateral[v] + u[v] * nb[v];
+  return pos;
+}
+
+// The curvature along the field at the current positions (`c`: the curvature there, for its
+// normals). Neighbours along a feature move together (the jet fits' noise made outlines jagged).
+std::vector<double> flow_curvature(const TriMesh& current, const MeshTopology& topo, const std::vector<Vec3>& field,
+                                   double h, Curvature& c) {
+  CurvatureOptions co;
+  co.derivatives = false;
+  co.topology = &topo;
+  c = compute_curvature(current, co);
+  const int nv = current.n_vertices();
+  std::vector<double> kp(nv);
+#pragma omp parallel for schedule(static)
+  for (int v = 0; v < nv; ++v) kp[v] = c.normal_curvature(v, field[v]);
+  diffuse(current, topo.ring, h, kp);
+  return kp;
+}
+
+// After the first iteration's curvature: each vertex may restore what its own curvature took
+// away, no more — the height a parabola of that curvature gains over the stopping rule's radius
+// rho. Without it the flow cascaded (a shoulder that rose made its neighbour concave, which sank,
+// and so on) and terraced smooth bodies: creases and craters on the bunny and the statuette.
+// It moves only the way its curvature first pushed it (outwards where convex), so that a vertex
+// whose curvature flips as its neighbours move does not oscillate.
+void cap_heights(double strength, const std::vector<double>& kp, double rho, FlowState& s) {
+  const double rho2 = rho * rho;
+  for (size_t v = 0; v < kp.size(); ++v) {
+    const double cap = strength * 0.5 * std::abs(kp[v]) * rho2;
+    if (kp[v] >= 0) {
+      s.lo[v] = 0;
+      if (cap < s.hi[v]) s.hi[v] = cap, s.capped[v] = 1;
+    } else {
+      s.hi[v] = 0;
+      if (-cap > s.lo[v]) s.lo[v] = -cap, s.capped[v] = 2;
+    }
+  }
+}
+
+struct FlowMoves {
+  double largest = 0, total = 0;  // the largest and the summed move of the iteration
+  long long moving = 0;           // vertices that moved
+};
+
+// One flow iteration: every vertex not stopped moves along its base normal by up to max_move,
+// as far as its curvature along the field (relative to kappa_ref) pushes it; a vertex that
+// reaches its bounds stops there (counted in out.at_extremum or out.at_curvature_cap).
+FlowMoves move_vertices(const std::vector<double>& kp, double kappa_ref, double max_move,
+                        const std::vector<Vec3>& normal, FlowState& s, EnhanceResult& out) {
+  const std::vector<Vec3>& nb = out.field.base.normal;
+  const int nv = static_cast<int>(kp.size());
+  double largest = 0, total = 0;
+  long long moving = 0, at_ext = 0, at_cap = 0;
+#pragma omp parallel for schedule(static) reduction(max : largest) reduction(+ : moving, at_ext, at_cap, total)
+  for (int v = 0; v < nv; ++v) {
+    if (s.stopped[v]) continue;
+    double d = s.near[v] * max_move * std::clamp(kp[v] / kappa_ref, -1.0, 1.0) * nb[v].dot(normal[v]);
+    if (s.hi[v] <= 0) d = std::min(d, 0.0);  // monotone: only ever the first way (see cap_heights)
+    if (s.lo[v] >= 0) d = std::max(d, 0.0);
+    if (d == 0) continue;
+    double nu = s.u[v] + d;
+    if (nu > s.hi[v] || nu < s.lo[v]) {
+      const bool up = nu > s.hi[v];
+      nu = std::clamp(nu, s.lo[v], s.hi[v]);
+      s.stopped[v] = 1;
+      if (s.capped[v] & (up ? 1 : 2))
+        ++at_cap;
+      else
+        ++at_ext;
+    }
+    largest = std::max(largest, std::abs(nu - s.u[v]));
+    total += std::abs(nu - s.u[v]);
+    s.u[v] = nu;
+    ++moving;
+  }
+  out.at_extremum += at_ext;
+  out.at_curvature_cap += at_cap;
+  return {largest, total, moving};
+}
+
+// Step 2: inverse-curvature flow along the prominent direction, each vertex moving along its base
+// normal and stopping at the extremum of the heights of its neighbourhood on the step-1 surface.
+void inverse_curvature_flow(const Surface& surface, const EnhanceParams& p, EnhanceResult& out) {
+  const ProminentFieldResult& f = out.field;
+  FlowState s = flow_start(surface, out);
+  TriMesh current;
+  current.faces = surface.mesh().faces;
   const int max_it = p.flow_iterations >= 0 ? p.flow_iterations : EnhanceParams::kMaxFlowIterations;
-  double kappa_ref = 0;
-  const double max_move = p.flow_step * h;
-  long long at_ext = 0, at_cap = 0, first_moving = 0;
-  double first_total = 0;
-  std::vector<char> capped(nv, 0);  // bit 0: hi is the curvature cap, bit 1: lo is
+  const double max_move = p.flow_step * f.scale.edge;
+  double kappa_ref = 0, first_total = 0;
+  long long first_moving = 0;
   out.converged = p.flow_iterations < 0;
   for (int it = 0; it < max_it; ++it) {
     if (p.progress) p.progress(30 + 70 * it / std::max(1, max_it), "Inverse-curvature flow");
-    cur.vertices.resize(nv);
-    for (int v = 0; v < nv; ++v) cur.vertices[v] = out.bilateral[v] + u[v] * nb[v];
-    CurvatureOptions co;
-    co.derivatives = false;
-    co.topology = &topo;
-    const Curvature c = compute_curvature(cur, co);
-    std::vector<double> kp(nv);
-#pragma omp parallel for schedule(static)
-    for (int v = 0; v < nv; ++v) kp[v] = c.normal_curvature(v, f.field[v]);
-    // Neighbours along a feature move together (the jet fits' noise made outlines jagged).
-    diffuse(cur, topo.ring, h, kp);
+    current.vertices = flow_positions(out, s.u);
+    Curvature c;
+    const std::vector<double> kp = flow_curvature(current, surface.topology(), f.field, f.scale.edge, c);
     if (it == 0) {
       std::vector<double> a;
-      for (int v = 0; v < nv; ++v)
-        if (!stopped[v]) a.push_back(std::abs(kp[v]));
+      for (size_t v = 0; v < kp.size(); ++v)
+        if (!s.stopped[v]) a.push_back(std::abs(kp[v]));
       kappa_ref = percentile(a, 0.9);
       if (!(kappa_ref > 0)) break;
-      // Each vertex may restore what its own curvature took away, no more: the height a
-      // parabola of that curvature gains over the stopping rule's radius. Without it the flow
-      // cascaded (a shoulder that rose made its neighbour concave, which sank, and so on) and
-      // terraced smooth bodies: creases and craters on the bunny and the statuette.
-      const double rho2 = out.extremum_radius * out.extremum_radius;
-      // It moves only the way its curvature first pushed it (outwards where convex), so that a
-      // vertex whose curvature flips as its neighbours move does not oscillate.
-      for (int v = 0; v < nv; ++v) {
-        const double cap = p.strength * 0.5 * std::abs(kp[v]) * rho2;
-        if (kp[v] >= 0) {
-          lo[v] = 0;
-          if (cap < hi[v]) hi[v] = cap, capped[v] = 1;
-        } else {
-          hi[v] = 0;
-          if (-cap > lo[v]) lo[v] = -cap, capped[v] = 2;
-        }
-      }
+      cap_heights(p.strength, kp, out.extremum_radius, s);
     }
-    double largest = 0, total = 0;
-    long long moving = 0;
-#pragma omp parallel for schedule(static) reduction(max : largest) reduction(+ : moving, at_ext, at_cap, total)
-    for (int v = 0; v < nv; ++v) {
-      if (stopped[v]) continue;
-      double d = near[v] * max_move * std::clamp(kp[v] / kappa_ref, -1.0, 1.0) * nb[v].dot(c.normal[v]);
-      if (hi[v] <= 0) d = std::min(d, 0.0);  // monotone: only ever the first way (see the caps)
-      if (lo[v] >= 0) d = std::max(d, 0.0);
-      if (d == 0) continue;
-      double nu = u[v] + d;
-      if (nu > hi[v] || nu < lo[v]) {
-        const bool up = nu > hi[v];
-        nu = std::clamp(nu, lo[v], hi[v]);
-        stopped[v] = 1;
-        if (capped[v] & (up ? 1 : 2))
-          ++at_cap;
-        else
-          ++at_ext;
-      }
-      largest = std::max(largest, std::abs(nu - u[v]));
-      total += std::abs(nu - u[v]);
-      u[v] = nu;
-      ++moving;
-    }
+    const FlowMoves m = move_vertices(kp, kappa_ref, max_move, c.normal, s, out);
     out.flow_iterations = it + 1;
-    if (it == 0) first_moving = moving, first_total = total;
-    if (p.flow_iterations < 0 && (moving <= kFlowSettledShare * first_moving || largest < kFlowSettled * max_move ||
-                                  total <= kFlowSettledShare * first_total))
+    if (it == 0) first_moving = m.moving, first_total = m.total;
+    if (p.flow_iterations < 0 && (m.moving <= kFlowSettledShare * first_moving ||
+                                  m.largest < kFlowSettled * max_move || m.total <= kFlowSettledShare * first_total))
       break;
     if (p.flow_iterations < 0 && it + 1 == max_it) out.converged = false;
   }
-  out.at_extremum = at_ext;
-  out.at_curvature_cap = at_cap;
-  sized(out.positions, size_t(nv), Vec3(Vec3::Zero()));
-  for (int v = 0; v < nv; ++v) out.positions[v] = out.bilateral[v] + u[v] * nb[v];
-  out.height_change = u;
+  out.positions = flow_positions(out, s.u);
+  out.height_change = std::move(s.u);
+}
+
+}  // namespace
+
+EnhanceResult enhance_relief(const TriMesh& mesh, const EnhanceParams& p) {
+  return enhance_relief(Surface::borrow(mesh), p);
+}
+
+EnhanceResult enhance_relief(const Surface& surface, const EnhanceParams& p) {
+  p.validate();
+  EnhanceResult out;
+  out.field = compute_prominent_field(surface, p.field);
+  const double h = out.field.scale.edge;
+  p.spatial_scale.check("Smoothing scale sigma_c", 0.1, 100, h);
+  out.spatial_scale = p.spatial_scale.resolve(h, EnhanceParams::kDefaultSpatialEdges * h);
+  out.extremum_radius = std::max(2 * out.spatial_scale, kExtremumWidths * out.field.feature_width);
+  auto t0 = std::chrono::steady_clock::now();
+  out.bilateral = bilateral_steps(surface, p, out);
+  out.bilateral_seconds = seconds_since(t0);
+  t0 = std::chrono::steady_clock::now();
+  inverse_curvature_flow(surface, p, out);
   out.flow_seconds = seconds_since(t0);
   if (p.progress) p.progress(100, "Enhancement");
   return out;

@@ -51,7 +51,11 @@ double edge_fit_error(const CurvatureDerivative& C, double k1, double k2, double
 double noise_tilt(const NoiseEstimate& noise, double presmoothing_edges, int n) {
   if (!(noise.relative > 0) || !std::isfinite(noise.relative) || !(presmoothing_edges >= 0 && presmoothing_edges <= 100))
     return 0;
-  const TriMesh patch = noise_patch(noise.relative, n);
+  return noise_tilt(Surface(noise_patch(noise.relative, n)), n, presmoothing_edges);
+}
+
+double noise_tilt(const Surface& patch, int n, double presmoothing_edges) {
+  if (!(presmoothing_edges >= 0 && presmoothing_edges <= 100)) return 0;
   const ScaledCurvature sc = curvature_at_scale(patch, Length::in_edges(presmoothing_edges), CurvatureEstimator::Jet, nullptr);
   const int margin = 3 + static_cast<int>(std::ceil(2 * presmoothing_edges));
   std::vector<double> tilt;
@@ -73,22 +77,21 @@ void ReliefEdgeParams::validate() const {
   require_range(strong_error, "Model error, strong edges", 0, 1);
   require_range(weak_error, "Model error, weak edges", 0, 1);
   require_range(strong_angle, "Steepness, strong edges", 0, kPi / 2);
-  require_range(weak_angle_h, "Steepness, weak edges", 0, kPi / 2);
-  require_range(weak_angle, "Orientation restriction angle", 0, kPi / 2);
+  require_range(weak_angle, "Steepness, weak edges", 0, kPi / 2);
+  require_range(restriction_min_tilt, "Orientation restriction angle", 0, kPi / 2);
 }
 
 namespace {
 
 // Step 1: the lengths the run uses, in mesh units; the fit radius and base scale follow the
 // features' own width.
-void resolve_lengths(const TriMesh& mesh, const ReliefEdgeParams& p, ReliefEdgeResult& r) {
+void resolve_lengths(const TriMesh& mesh, const ReliefEdgeParams& p, ReliefEdgeFields& r) {
   const double h = r.scale.edge;
   p.base_scale.check("Base surface scale", 0.5, 10000, h);
   p.edge_smoothing.check("Edge smoothing", 0, 100, h);
   r.feature_width = feature_width(mesh, r.curvature, r.scale, r.topology.get());
   r.base_scale = p.base_scale.resolve(h, std::max(automatic_base_scale(r.scale), kBaseScaleWidths * r.feature_width));
   r.edge_smoothing = p.edge_smoothing.resolve(h, ReliefEdgeParams::kDefaultEdgeSmoothingEdges * h);
-  r.min_length = p.min_length_edges * h;
   r.fit_radius = std::max(p.fit_radius_edges * h, kFitRadiusWidths * r.feature_width);
 }
 
@@ -98,7 +101,7 @@ struct EdgeFrames {
   std::vector<Vec2> best, base;
   std::vector<char> strong_base;
 };
-EdgeFrames edge_frames(const ReliefEdgeParams& p, ReliefEdgeResult& r) {
+EdgeFrames edge_frames(const ReliefEdgeParams& p, ReliefEdgeFields& r) {
   const Curvature& c = r.curvature;
   const int nv = static_cast<int>(c.k1.size());
   EdgeFrames e;
@@ -113,7 +116,7 @@ EdgeFrames edge_frames(const ReliefEdgeParams& p, ReliefEdgeResult& r) {
     Vec2 b(proj.dot(c.dir1[v]), proj.dot(c.dir2[v]));
     double bl = b.norm();
     e.base[v] = bl > 0 ? Vec2(b / bl) : Vec2(1, 0);
-    e.strong_base[v] = r.angle[v] > p.weak_angle && bl > 0;
+    e.strong_base[v] = r.angle[v] > p.restriction_min_tilt && bl > 0;
     Vec2 m[3];
     int k = cubic_form_maxima(edge_correlation_form(c.dcurv[v]), m);
     if (k == 0) {
@@ -142,15 +145,16 @@ EdgeFrames edge_frames(const ReliefEdgeParams& p, ReliefEdgeResult& r) {
 }
 
 // The given base's normal curvature along g (principal frame of v); 0 without a given base.
-double base_curvature(const ReliefEdgeParams& p, const Curvature& c, int v, const Vec2& g) {
-  if (!p.given_base_shape) return 0;
+double base_curvature(const ReliefEdgeGuidance& guide, const Curvature& c, int v, const Vec2& g) {
+  if (guide.base_shape.empty()) return 0;
   const Vec3 t = g.x() * c.dir1[v] + g.y() * c.dir2[v];
-  return t.dot((*p.given_base_shape)[v] * t);
+  return t.dot(guide.base_shape[v] * t);
 }
 
 // Step 4: the edge direction g (restricted to the window around the base direction), the edge
 // intensity, the model's fit error and G = g^T II g. Returns g in the principal frame.
-std::vector<Vec2> edge_model(const ReliefEdgeParams& p, const EdgeFrames& e, ReliefEdgeResult& r) {
+std::vector<Vec2> edge_model(const ReliefEdgeParams& p, const ReliefEdgeGuidance& guide, const EdgeFrames& e,
+                             ReliefEdgeFields& r) {
   const Curvature& c = r.curvature;
   const int nv = static_cast<int>(c.k1.size());
   const double cos_w = std::cos(r.window), sin_w = std::sin(r.window);
@@ -170,18 +174,19 @@ std::vector<Vec2> edge_model(const ReliefEdgeParams& p, const EdgeFrames& e, Rel
     }
     const double f = hh.f(g.x(), g.y());
     r.alpha[v] = f / kA;
-    const double radius =
-        p.vertex_feature_width ? std::max(r.fit_radius, kFitRadiusWidths * (*p.vertex_feature_width)[v]) : r.fit_radius;
+    const double radius = guide.feature_width.empty()
+                              ? r.fit_radius
+                              : std::max(r.fit_radius, kFitRadiusWidths * guide.feature_width[v]);
     r.fit_error[v] = edge_fit_error(c.dcurv[v], c.k1[v], c.k2[v], f, radius);
     g2[v] = g;
-    r.G[v] = c.k1[v] * g.x() * g.x() + c.k2[v] * g.y() * g.y() - base_curvature(p, c, v, g);
+    r.G[v] = c.k1[v] * g.x() * g.x() + c.k2[v] * g.y() * g.y() - base_curvature(guide, c, v, g);
   }
   return g2;
 }
 
 // Step 5, edge smoothing (eq. 4.18): smooth G, then recover directions giving the smoothed value,
 // nearest to the current ones; where none exists, the nearest value.
-void smooth_edges(const TriMesh& mesh, const ReliefEdgeParams& p, std::vector<Vec2>& g2, ReliefEdgeResult& r) {
+void smooth_edges(const TriMesh& mesh, const ReliefEdgeGuidance& guide, std::vector<Vec2>& g2, ReliefEdgeFields& r) {
   const Curvature& c = r.curvature;
   const int nv = static_cast<int>(c.k1.size());
   std::vector<double> Gs = r.G;
@@ -192,7 +197,7 @@ void smooth_edges(const TriMesh& mesh, const ReliefEdgeParams& p, std::vector<Ve
     Vec2 g = g2[v];
     // With a given base, G is over the base's curvature along the current g (which changes
     // little in the step below).
-    const double b = base_curvature(p, c, v, g), target = Gs[v] + b;
+    const double b = base_curvature(guide, c, v, g), target = Gs[v] + b;
     if (k1 - k2 > 1e-12 * (std::abs(k1) + std::abs(k2))) {
       double c2 = std::clamp((target - k2) / (k1 - k2), 0.0, 1.0);
       double cs = std::sqrt(c2), sn = std::sqrt(1 - c2);
@@ -209,6 +214,23 @@ void smooth_edges(const TriMesh& mesh, const ReliefEdgeParams& p, std::vector<Ve
   }
 }
 
+// The noise tilt at each crossing point (the guidance's, interpolated); empty without it.
+std::vector<double> crossing_noise(const Polylines& all, const ReliefEdgeGuidance& guide) {
+  return guide.noise_tilt.empty() ? std::vector<double>() : interpolate_at_points(all, guide.noise_tilt);
+}
+
+// The least tilt noise gives: the smallest of the guidance's per-vertex tilts (reported; each
+// point has its own), else that of the estimated noise after the run's pre-smoothing.
+double least_noise_tilt(const TriMesh& mesh, const ReliefEdgeFields& r, const ReliefEdgeGuidance& guide) {
+  if (guide.noise_tilt.empty())
+    return noise_tilt(r.noise, r.presmoothing / r.scale.edge, noise_patch_cells(mesh.n_faces()));
+  double least = 0;
+  bool first = true;
+  for (double x : guide.noise_tilt)
+    if (std::isfinite(x) && (first || x < least)) least = x, first = false;
+  return least;
+}
+
 // Step 6: the hysteresis thresholds on the tilt. Automatic from the crossings (the same rule as
 // for demarcating curves; angles are scale-free), and above the tilt that the estimated noise
 // alone gives after the same pre-smoothing (noise_tilt). The thesis' fixed 11 degrees (used
@@ -218,29 +240,25 @@ void smooth_edges(const TriMesh& mesh, const ReliefEdgeParams& p, std::vector<Ve
 // scan the noise's crossings outnumber the relief's and pulled the percentile (and with it the
 // threshold, to 1.2 degrees at 1 M faces) down to where the feet and tops of the steps passed as
 // edges.
-void tilt_thresholds(const TriMesh& mesh, const ReliefEdgeParams& p, const Polylines& all,
-                     const std::vector<double>& point_noise, ReliefEdgeResult& r) {
-  if (p.vertex_noise_tilt) {  // the smallest (reported; each point has its own)
-    r.noise_angle = 0;
-    bool first = true;
-    for (double x : *p.vertex_noise_tilt)
-      if (std::isfinite(x) && (first || x < r.noise_angle)) r.noise_angle = x, first = false;
-  } else {
-    r.noise_angle = noise_tilt(r.noise, r.presmoothing / r.scale.edge, noise_patch_cells(mesh.n_faces()));
-  }
+ReliefEdgeThresholds tilt_thresholds(const TriMesh& mesh, const ReliefEdgeParams& p, const ReliefEdgeFields& r,
+                                     const Polylines& all, const std::vector<double>& point_noise,
+                                     const ReliefEdgeGuidance& guide) {
+  ReliefEdgeThresholds t;
+  t.noise_angle = least_noise_tilt(mesh, r, guide);
   std::vector<double> above_noise;
   for (const auto& sg : all.segments) {
     const double a = 0.5 * (all.strength[sg[0]] + all.strength[sg[1]]);
-    const double nz = point_noise.empty() ? r.noise_angle : 0.5 * (point_noise[sg[0]] + point_noise[sg[1]]);
-    r.steepest_crossing = std::max(r.steepest_crossing, a);
+    const double nz = point_noise.empty() ? t.noise_angle : 0.5 * (point_noise[sg[0]] + point_noise[sg[1]]);
+    t.steepest_crossing = std::max(t.steepest_crossing, a);
     if (a > nz) above_noise.push_back(a);
   }
-  r.automatic_angle =
+  t.automatic_angle =
       automatic_curve_threshold(median_positive(counted_values(r.angle, r.scale.counts)), std::move(above_noise));
-  r.strong_angle = p.strong_angle > 0 ? p.strong_angle
-                   : point_noise.empty() ? std::max(r.automatic_angle, r.noise_angle)
-                                         : r.automatic_angle;
-  r.weak_angle = p.weak_angle_h > 0 ? p.weak_angle_h : 0.5 * r.strong_angle;
+  t.strong_angle = p.strong_angle > 0 ? p.strong_angle
+                   : point_noise.empty() ? std::max(t.automatic_angle, t.noise_angle)
+                                         : t.automatic_angle;
+  t.weak_angle = p.weak_angle > 0 ? p.weak_angle : 0.5 * t.strong_angle;
+  return t;
 }
 
 // Step 7: two-dimensional hysteresis (fit error and tilt), then the gaps it leaves are bridged —
@@ -263,15 +281,36 @@ void select_edges(const ReliefEdgeParams& p, const Polylines& all, const std::ve
   r.edges = drop_short_chains(kept, r.min_length);
 }
 
-}  // namespace
-
-ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParams& p) {
-  return compute_relief_edges(Surface::borrow(mesh), p);
+// Per-vertex guidance must have one value per vertex (or none).
+void check_guidance(const ReliefEdgeGuidance& guide, size_t nv) {
+  auto wrong_size = [nv](const auto& x) { return !x.empty() && x.size() != nv; };
+  if (wrong_size(guide.base_normals) || wrong_size(guide.base_shape) || wrong_size(guide.noise_tilt) ||
+      wrong_size(guide.feature_width))
+    throw std::invalid_argument("relief edges: a per-vertex guidance input has another vertex count than the mesh");
 }
 
-ReliefEdgeResult compute_relief_edges(const Surface& surface, const ReliefEdgeParams& p) {
+// The tilt across the edge at every vertex: asin of the base normal's tangential part along g.
+std::vector<double> tilt_across_edges(const ReliefEdgeFields& r) {
+  const Curvature& c = r.curvature;
+  const int nv = static_cast<int>(c.k1.size());
+  std::vector<double> across;
+  sized(across, size_t(nv));
+#pragma omp parallel for schedule(static)
+  for (int v = 0; v < nv; ++v) {
+    const Vec3& n = c.normal[v];
+    const Vec3& nb = r.base.normal[v];
+    const double s = std::abs((nb - n * n.dot(nb)).dot(r.direction[v]));
+    across[v] = std::asin(std::clamp(s, 0.0, 1.0));
+  }
+  return across;
+}
+
+}  // namespace
+
+ReliefEdgeFields compute_relief_edge_fields(const Surface& surface, const ReliefEdgeParams& p,
+                                            const ReliefEdgeGuidance& guide) {
   const TriMesh& mesh = surface.mesh();
-  ReliefEdgeResult r;
+  ReliefEdgeFields r;
   // Step 1: scale, noise, pre-smoothing and curvature with derivatives (shared first stage).
   static_cast<ScaledCurvature&>(r) = begin_curve_filter(surface, p);
   resolve_lengths(mesh, p, r);
@@ -279,62 +318,75 @@ ReliefEdgeResult compute_relief_edges(const Surface& surface, const ReliefEdgePa
 
   // Step 2: the base surface's normals.
   if (p.progress) p.progress(60, "Base normals");
-  auto wrong_size = [&](const auto* x) { return x && x->size() != c.normal.size(); };
-  if (wrong_size(p.given_base_normals) || wrong_size(p.given_base_shape) || wrong_size(p.vertex_noise_tilt) ||
-      wrong_size(p.vertex_feature_width))
-    throw std::invalid_argument("compute_relief_edges: a per-vertex input has another vertex count than the mesh");
-  if (p.given_base_normals) {
-    r.base.normal = *p.given_base_normals;
+  check_guidance(guide, c.normal.size());
+  if (!guide.base_normals.empty()) {
+    r.base.normal = guide.base_normals;
   } else {
     BaseNormalOptions bo;
     bo.scale = r.base_scale;
     r.base = estimate_base_normals(surface, c.normal, bo);
   }
 
+  // Steps 3-5: edge directions, the edge model, edge smoothing.
   if (p.progress) p.progress(80, "Edge directions");
   const EdgeFrames frames = edge_frames(p, r);
-  std::vector<Vec2> g2 = edge_model(p, frames, r);
+  std::vector<Vec2> g2 = edge_model(p, guide, frames, r);
   if (r.edge_smoothing > 0) {
     if (p.progress) p.progress(88, "Edge smoothing");
-    smooth_edges(mesh, p, g2, r);
+    smooth_edges(mesh, guide, g2, r);
   }
   sized(r.direction, c.k1.size(), Vec3(Vec3::Zero()));
 #pragma omp parallel for schedule(static)
   for (int v = 0; v < mesh.n_vertices(); ++v) r.direction[v] = g2[v].x() * c.dir1[v] + g2[v].y() * c.dir2[v];
+  return r;
+}
 
-  // Relief edge points: zeros of G along g; strength = angle between surface and base normal.
-  if (p.progress) p.progress(93, "Relief edge points");
+Polylines relief_edge_crossings(const Surface& surface, const ReliefEdgeFields& r, const ReliefEdgeGuidance& guide) {
+  const TriMesh& mesh = surface.mesh();
+  const Curvature& c = r.curvature;
+  if (r.G.size() != size_t(mesh.n_vertices()))
+    throw std::invalid_argument("relief_edge_crossings: the fields have another vertex count than the mesh");
+  check_guidance(guide, r.G.size());
   DirectionalFieldView f;
   f.direction = r.direction.data();
   f.value = r.G.data();
-  std::vector<double> across;
-  if (p.tilt_across) {
-    sized(across, c.k1.size());
-#pragma omp parallel for schedule(static)
-    for (int v = 0; v < mesh.n_vertices(); ++v) {
-      const Vec3& n = c.normal[v];
-      const Vec3& nb = r.base.normal[v];
-      const double s = std::abs((nb - n * n.dot(nb)).dot(r.direction[v]));
-      across[v] = std::asin(std::clamp(s, 0.0, 1.0));
-    }
-  }
-  f.strength = p.tilt_across ? across.data() : r.angle.data();
+  const std::vector<double> across = guide.tilt_across ? tilt_across_edges(r) : std::vector<double>();
+  f.strength = guide.tilt_across ? across.data() : r.angle.data();
   f.size = c.k1.size();
   f.axial = false;
-  f.value_along = [&c, &p](int v, const Vec3& t) {
+  f.value_along = [&c, &guide](int v, const Vec3& t) {
     const Vec2 u(t.dot(c.dir1[v]), t.dot(c.dir2[v]));  // in v's principal frame, unit
     const double n = u.norm();
-    return n > 0 ? c.normal_curvature(v, t) - base_curvature(p, c, v, u / n) : 0.0;
+    return n > 0 ? c.normal_curvature(v, t) - base_curvature(guide, c, v, u / n) : 0.0;
   };
   ZeroCrossingOptions zo;
-  if (p.steepest_only)  // G < 0 at a step's foot, > 0 at its top: it rises along g (up the slope)
+  if (guide.steepest_only)  // G < 0 at a step's foot, > 0 at its top: it rises along g (up the slope)
     zo.accept_face = [&mesh](int face, const double val[3], const Vec3 dir[3]) {
       return face_gradient(mesh, face, val).dot(dir[0] + dir[1] + dir[2]) > 0;
     };
-  const Polylines all = extract_zero_crossings(mesh, c.normal, f, zo);
-  const std::vector<double> point_noise =
-      p.vertex_noise_tilt ? interpolate_at_points(all, *p.vertex_noise_tilt) : std::vector<double>();
-  tilt_thresholds(mesh, p, all, point_noise, r);
+  return extract_zero_crossings(mesh, c.normal, f, zo);
+}
+
+ReliefEdgeThresholds relief_edge_thresholds(const Surface& surface, const ReliefEdgeFields& fields,
+                                            const Polylines& crossings, const ReliefEdgeParams& params,
+                                            const ReliefEdgeGuidance& guidance) {
+  return tilt_thresholds(surface.mesh(), params, fields, crossings, crossing_noise(crossings, guidance), guidance);
+}
+
+ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParams& p, const ReliefEdgeGuidance& guide) {
+  return compute_relief_edges(Surface::borrow(mesh), p, guide);
+}
+
+ReliefEdgeResult compute_relief_edges(const Surface& surface, const ReliefEdgeParams& p,
+                                      const ReliefEdgeGuidance& guide) {
+  ReliefEdgeResult r;
+  static_cast<ReliefEdgeFields&>(r) = compute_relief_edge_fields(surface, p, guide);
+  // Relief edge points: zeros of G along g; strength = angle between surface and base normal.
+  if (p.progress) p.progress(93, "Relief edge points");
+  const Polylines all = relief_edge_crossings(surface, r, guide);
+  const std::vector<double> point_noise = crossing_noise(all, guide);
+  static_cast<ReliefEdgeThresholds&>(r) = tilt_thresholds(surface.mesh(), p, r, all, point_noise, guide);
+  r.min_length = p.min_length_edges * r.scale.edge;
   select_edges(p, all, point_noise, r);
   return r;
 }

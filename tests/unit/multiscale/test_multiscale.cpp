@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <string>
 
+#include "reliefkit/base/work_counts.h"
 #include "reliefkit/multiscale/multiscale.h"
 #include "reliefs.h"
 #include "shapes.h"
@@ -113,6 +114,35 @@ TEST(Multiscale, SameScalesAndCurvesInAnyUnit) {
     worst = std::max(worst, std::abs(rb.scale.sigma[v] / 1000 - ra.scale.sigma[v]) / ra.scale.scale.edge);
   std::printf("largest scale difference: %.2e edge lengths\n", worst);
   EXPECT_LT(worst, 1e-3);
+}
+
+// One run builds the scan's adjacency, scale and noise once (every scale-space level is the run's
+// surface at other positions, and so is the surface the ridges and valleys are drawn on) and
+// simulates noise on one patch: the optimal scale's noise floor and, for relief edges, the noise
+// tilt at every level share it (the scan's noise is above kMinScaleNoise here). The patch's
+// adjacency and scale are counted too, and its noise where the tilt is measured; the relief edges'
+// smoothed surface keeps its own scale and noise (its lengths are in its own edge lengths). On the
+// coin this was 5 adjacencies and 4 scales for ridges and valleys, 13 adjacencies, 12 scales,
+// 10 noise estimates and 9 patches for relief edges.
+TEST(Multiscale, ARunBuildsTheScansGeometryOnceAndOneNoisePatch) {
+  TriMesh m = rktest::height_field([](double x, double) { return 0.05 * std::sin(6 * x); }, 1.0, 50, 0.3, 3);
+  rktest::Rng rng(7);
+  for (auto& p : m.vertices) p.z() += 0.1 * (2.0 / 50) * rng.normal();  // 10 % of the edge length
+  ASSERT_GT(Surface::borrow(m).noise().relative, kMinScaleNoise);
+  reset_work_counts();
+  multiscale_ridges_valleys(Surface::borrow(m), {});
+  WorkCounts c = work_counts();
+  EXPECT_EQ(c[Work::NoiseFloor], 1) << c.summary();
+  EXPECT_EQ(c[Work::Adjacency], 2) << c.summary();
+  EXPECT_EQ(c[Work::MeshScale], 2) << c.summary();
+  EXPECT_EQ(c[Work::Noise], 1) << c.summary();
+  reset_work_counts();
+  multiscale_relief_edges(Surface::borrow(m), {});
+  c = work_counts();
+  EXPECT_EQ(c[Work::NoiseFloor], 1) << c.summary();
+  EXPECT_EQ(c[Work::Adjacency], 2) << c.summary();
+  EXPECT_EQ(c[Work::MeshScale], 3) << c.summary();
+  EXPECT_EQ(c[Work::Noise], 3) << c.summary();
 }
 
 TEST(Multiscale, RefusesMeshesWithoutFacesAndTooSmallForTheScales) {

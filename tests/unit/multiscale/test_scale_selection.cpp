@@ -107,3 +107,28 @@ TEST(ScaleSelection, FlatOrUnbracketedStrengths) {
   for (size_t k = 0; k < t.size(); ++k) two[2 * k + 1] = 1.0 / (t[k] * t[k]);  // t f falls: the first scale
   EXPECT_EQ(select_scale(t, two.data() + 1, 2, 1.0), t.front());
 }
+
+// The bracketing of a scale between two levels (log σ of 1, 2, 4, 8 edge lengths): the levels around
+// it and its weight, linear in log σ; outside the range the end level; one level, itself.
+TEST(ScaleSelection, BracketsAScaleBetweenTwoLevels) {
+  const std::vector<double> u = {0.0, std::log(2.0), std::log(4.0), std::log(8.0)};
+  struct Case {
+    double sigma;
+    int lower, upper;
+    double weight;
+  };
+  for (const Case& c : {Case{1.0, 0, 1, 0.0}, Case{std::sqrt(2.0), 0, 1, 0.5}, Case{2.0, 0, 1, 1.0},
+                        Case{2.0 * std::pow(2.0, 0.25), 1, 2, 0.25}, Case{8.0, 2, 3, 1.0}, Case{0.5, 0, 1, 0.0},
+                        Case{100.0, 2, 3, 1.0}}) {
+    const ScaleBracket b = bracket_scale(u, std::log(c.sigma));
+    EXPECT_EQ(b.lower, c.lower) << c.sigma;
+    EXPECT_EQ(b.upper, c.upper) << c.sigma;
+    EXPECT_NEAR(b.weight, c.weight, 1e-12) << c.sigma;
+  }
+  // Between the levels of 2 and 4 at a quarter: a quarter of the way from level 1's value to level 2's.
+  EXPECT_DOUBLE_EQ(bracket_scale(u, std::log(2.0 * std::pow(2.0, 0.25))).mix(10.0, 30.0), 15.0);
+  const ScaleBracket single = bracket_scale({std::log(3.0)}, std::log(5.0));
+  EXPECT_EQ(single.lower, 0);
+  EXPECT_EQ(single.upper, 0);
+  EXPECT_EQ(single.weight, 0.0);
+}

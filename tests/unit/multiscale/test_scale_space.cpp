@@ -36,7 +36,7 @@ TEST(ScaleSpace, GaussianBumpFlattensLikeAGaussianConvolution) {
     o.substeps = 8;
     o.stepping = mode;
     ScaleSpaceReport rep =
-        scale_space(m, sigmas, o, [&](int, const TriMesh& s) { height.push_back(s.vertices[c].z()); });
+        scale_space(m, sigmas, o, [&](int, const Surface& s) { height.push_back(s.mesh().vertices[c].z()); });
     ASSERT_EQ(height.size(), 3u);
     EXPECT_TRUE(rep.converged);
     if (mode == Stepping::Explicit) EXPECT_EQ(rep.implicit_steps, 0);
@@ -92,8 +92,8 @@ TEST(ScaleSpace, EveryVertexFollowsTheHeatEquationAndMovesWithTheMesh) {
     o.substeps = 8;
     o.stepping = mode;
     std::vector<Vec3> a, b;
-    const ScaleSpaceReport rep = scale_space(m, {sigma}, o, [&](int, const TriMesh& s) { a = s.vertices; });
-    scale_space(moved, {sigma}, o, [&](int, const TriMesh& s) { b = s.vertices; });
+    const ScaleSpaceReport rep = scale_space(m, {sigma}, o, [&](int, const Surface& s) { a = s.mesh().vertices; });
+    scale_space(moved, {sigma}, o, [&](int, const Surface& s) { b = s.mesh().vertices; });
     EXPECT_EQ(rep.fixed_vertices, 1);  // the pinch
     double worst_move = 0, worst_height = 0;
     for (int v = 0; v < m.n_vertices(); ++v) {
@@ -125,9 +125,9 @@ TEST(ScaleSpace, UnitSphereShrinksLikeTheHeatEquationSays) {
     o.substeps = 8;
     o.stepping = mode;
     std::vector<double> radius;
-    scale_space(m, sigmas, o, [&](int, const TriMesh& s) {
+    scale_space(m, sigmas, o, [&](int, const Surface& s) {
       double r = 0;
-      for (const auto& p : s.vertices) r += p.norm();
+      for (const auto& p : s.mesh().vertices) r += p.norm();
       radius.push_back(r / s.n_vertices());
     });
     for (size_t k = 0; k < sigmas.size(); ++k) {
@@ -143,7 +143,8 @@ TEST(ScaleSpace, AnOpenRimStaysOnItsBoundaryAndTheInputIsUntouched) {
   for (auto mode : {ScaleSpaceOptions::Stepping::Implicit, ScaleSpaceOptions::Stepping::Explicit}) {
   ScaleSpaceOptions o;
   o.stepping = mode;
-  ScaleSpaceReport rep = scale_space(m, {0.05, 0.1}, o, [&](int, const TriMesh& s) {
+  ScaleSpaceReport rep = scale_space(m, {0.05, 0.1}, o, [&](int, const Surface& level) {
+    const TriMesh& s = level.mesh();
     for (int v = 0; v < s.n_vertices(); ++v) {
       const Vec3& p0 = m.vertices[v];
       // Vertices on the straight sides, five scales away from the corners (which diffusion along
@@ -160,7 +161,7 @@ TEST(ScaleSpace, AnOpenRimStaysOnItsBoundaryAndTheInputIsUntouched) {
 
 TEST(ScaleSpace, RefusesBadScalesAndMeshesWithoutFaces) {
   const TriMesh m = rktest::height_field(bump, 1.0, 10);
-  auto none = [](int, const TriMesh&) {};
+  auto none = [](int, const Surface&) {};
   EXPECT_THROW(scale_space(m, {0.2, 0.1}, {}, none), InputError);
   EXPECT_THROW(scale_space(m, {-1.0}, {}, none), InputError);
   EXPECT_THROW(scale_space(m, {std::nan("")}, {}, none), InputError);

@@ -16,6 +16,7 @@
 #include <limits>
 #include <map>
 
+#include "reliefkit/base/work_counts.h"
 #include "reliefkit/prominent/prominent.h"
 #include "reliefs.h"
 #include "shapes.h"
@@ -491,4 +492,29 @@ TEST(ProminentBadInput, AwkwardMeshesGiveFiniteResults) {
     const ColoringResult c = curvature_coloring(r.field.curvature, &r.field.field, {}, ColoringCurvature::Prominent, 1);
     for (double g : c.grey) ASSERT_TRUE(g > 0 && g < 1);
   }
+}
+
+// On the run's Surface the field and the enhancement build the scan's adjacency, scale and noise
+// once (the noise-floor patch has its own one each) and one Laplacian: the base normals' clamped
+// one, which the field's solve shares. The field reads chapter 4's per-vertex fields and takes
+// its relief-edge tilt threshold from Relief Edges' weak hysteresis tilt.
+TEST(ProminentField, OnTheRunsSurfaceTheGeometryIsComputedOnce) {
+  rktest::ReliefShape shape;
+  shape.noise = 0.1;
+  const rktest::Relief disc = rktest::disc_on_plane(shape, 60);
+  const Surface surface = Surface::borrow(disc.mesh);
+  reset_work_counts();
+  EnhanceParams p;
+  p.flow_iterations = 2;
+  const EnhanceResult r = enhance_relief(surface, p);
+  const WorkCounts c = work_counts();
+  EXPECT_EQ(c[Work::NoiseFloor], 1) << c.summary();
+  EXPECT_EQ(c[Work::Adjacency], 1 + c[Work::NoiseFloor]) << c.summary();
+  EXPECT_EQ(c[Work::MeshScale], 1 + c[Work::NoiseFloor]) << c.summary();
+  EXPECT_EQ(c[Work::Noise], 1 + c[Work::NoiseFloor]) << c.summary();
+  EXPECT_EQ(c[Work::Laplacian], 1) << c.summary();
+  const ReliefEdgeResult edges = compute_relief_edges(surface);
+  EXPECT_EQ(r.field.tilt_threshold, edges.weak_angle);
+  EXPECT_EQ(r.field.relief_direction, edges.direction);
+  EXPECT_EQ(r.field.fit_error, edges.fit_error);
 }

@@ -7,6 +7,7 @@
 #include "reliefkit/demarcating/demarcating.h"
 #include "reliefkit/relief_edges/relief_edges.h"
 #include "reliefkit/base/cubic_form.h"
+#include "reliefkit/base/work_counts.h"
 #include "reliefs.h"
 #include "reliefkit/relief_edges/ridges.h"
 #include "shapes.h"
@@ -208,4 +209,99 @@ TEST(RidgesValleys, GroovesAndCrests) {
       EXPECT_GT(inner, 0.9 * 6 * 1.8) << what;
     }
   }
+}
+
+// The per-vertex fields on their own: what compute_relief_edges computes before its curves,
+// without the noise-floor simulation (it serves the curves' thresholds alone); the crossings of G
+// give the detector's own thresholds, and the steep ones lie on the disc's true rim.
+TEST(ReliefEdgeFields, TheDetectorsOwnFieldsWithoutItsCurves) {
+  rktest::ReliefShape shape;
+  shape.noise = 0.1;
+  const rktest::Relief r = rktest::disc_on_plane(shape, 80);
+  const Surface surface = Surface::borrow(r.mesh);
+  reset_work_counts();
+  const ReliefEdgeFields f = compute_relief_edge_fields(surface);
+  EXPECT_EQ(work_counts()[Work::NoiseFloor], 0) << work_counts().summary();
+  const ReliefEdgeResult e = compute_relief_edges(surface);
+  EXPECT_EQ(work_counts()[Work::NoiseFloor], 1) << work_counts().summary();
+  EXPECT_EQ(f.G, e.G);
+  EXPECT_EQ(f.direction, e.direction);
+  EXPECT_EQ(f.fit_error, e.fit_error);
+  EXPECT_EQ(f.angle, e.angle);
+  EXPECT_EQ(f.base.normal, e.base.normal);
+  EXPECT_EQ(f.window, e.window);
+  const Polylines crossings = relief_edge_crossings(surface, f);
+  const ReliefEdgeThresholds t = relief_edge_thresholds(surface, f, crossings);
+  EXPECT_EQ(t.strong_angle, e.strong_angle);
+  EXPECT_EQ(t.weak_angle, e.weak_angle);
+  EXPECT_EQ(t.noise_angle, e.noise_angle);
+  EXPECT_EQ(e.weak_angle, 0.5 * e.strong_angle);  // automatic: half the strong tilt
+  // Strong points (the hysteresis' seeds: steep and fitting the step model) lie on the rim.
+  const std::vector<double> error = interpolate_at_points(crossings, f.fit_error);
+  double on_rim = 0, steep = 0;
+  for (size_t i = 0; i < crossings.points.size(); ++i) {
+    if (crossings.strength[i] < e.strong_angle || error[i] > ReliefEdgeParams().strong_error) continue;
+    const Vec3& x = crossings.points[i];
+    steep += 1;
+    on_rim += std::abs(std::hypot(x.x(), x.y()) - 0.5) <= 2 * r.mean_edge;
+  }
+  std::printf("strong crossing points: %.0f, %.3f of them within 2 edge lengths of the rim\n", steep, on_rim / steep);
+  ASSERT_GT(steep, 100);
+  EXPECT_GE(on_rim / steep, 0.95);
+}
+
+// The hysteresis steepness and the orientation restriction's least tilt are separate settings.
+TEST(ReliefEdgeParams, WeakSteepnessAndRestrictionTiltAreSeparateSettings) {
+  rktest::ReliefShape shape;
+  shape.noise = 0.1;
+  const rktest::Relief r = rktest::disc_on_plane(shape, 80);
+  const Surface surface = Surface::borrow(r.mesh);
+  ReliefEdgeParams p;
+  p.strong_angle = 0.1, p.weak_angle = 0.03;
+  const ReliefEdgeResult e = compute_relief_edges(surface, p);
+  EXPECT_EQ(e.strong_angle, 0.1);
+  EXPECT_EQ(e.weak_angle, 0.03);
+  // No vertex tilts more than 90 degrees: that least tilt restricts none, as no restriction.
+  ReliefEdgeParams none, off;
+  none.restriction_min_tilt = 3.14159265358979323846 / 2;
+  off.restrict_orientation = false;
+  const ReliefEdgeFields f_none = compute_relief_edge_fields(surface, none);
+  const ReliefEdgeFields f_off = compute_relief_edge_fields(surface, off);
+  EXPECT_EQ(f_none.direction, f_off.direction);
+  EXPECT_NE(e.direction, f_off.direction);  // the default 11 degrees restricts the rim's vertices
+  none.restriction_min_tilt = 2;
+  EXPECT_THROW(compute_relief_edge_fields(surface, none), InputError);
+}
+
+// What another stage supplies: given base normals replace the estimate (no Laplacian is built);
+// a given base shape operator S is taken off G: G - G_given = t^T S t along the edge direction t,
+// which for a sphere's (I - z z^T) / R over the plane is (1 - t_z^2) / R.
+TEST(ReliefEdgeGuidance, GivenBaseReplacesTheEstimateAndWrongSizesAreRefused) {
+  const rktest::Relief r = rktest::disc_on_plane({}, 80);
+  const Surface surface = Surface::borrow(r.mesh);
+  const size_t nv = r.mesh.vertices.size();
+  ReliefEdgeParams p;
+  p.edge_smoothing = Length::in_edges(0);  // G as the edge model gives it
+  const ReliefEdgeFields plain = compute_relief_edge_fields(surface, p);
+  ReliefEdgeGuidance given;
+  given.base_normals = r.base_normal;
+  reset_work_counts();
+  const ReliefEdgeFields with_normals = compute_relief_edge_fields(Surface::borrow(r.mesh), p, given);
+  EXPECT_EQ(work_counts()[Work::Laplacian], 0) << work_counts().summary();
+  EXPECT_EQ(with_normals.base.normal, r.base_normal);
+  ReliefEdgeGuidance shaped;
+  const double radius = 3;
+  shaped.base_shape.assign(nv, (Mat3::Identity() - Vec3::UnitZ() * Vec3::UnitZ().transpose()) / radius);
+  const ReliefEdgeFields with_shape = compute_relief_edge_fields(surface, p, shaped);
+  ASSERT_EQ(with_shape.direction, plain.direction);
+  double worst = 0;
+  for (size_t v = 0; v < nv; ++v) {
+    const double tz = plain.direction[v].z();
+    worst = std::max(worst, std::abs(plain.G[v] - with_shape.G[v] - (1 - tz * tz) / radius));
+  }
+  EXPECT_LT(worst, 1e-9);
+  ReliefEdgeGuidance wrong;
+  wrong.noise_tilt.assign(nv - 1, 0.1);
+  EXPECT_THROW(compute_relief_edge_fields(surface, p, wrong), std::invalid_argument);
+  EXPECT_THROW(relief_edge_crossings(surface, plain, wrong), std::invalid_argument);
 }

@@ -35,4 +35,9 @@ struct LaplacianOptions {
 LaplacianResult cotangent_laplacian(const TriMesh& mesh, const MeshTopology& topology, const LaplacianOptions& options = {});
 LaplacianResult cotangent_laplacian(const TriMesh& mesh, const LaplacianOptions& options = {});
 
+/// The uniform (graph) Laplacian L = I - D^-1 A over the ring's neighbours (the Laplacian
+/// coordinates of the thesis' eq. 7.7): row i holds 1 on the diagonal and -1/d_i for each of its d_i
+/// neighbours; a vertex without neighbours has an empty row. Not symmetric (rows sum to zero).
+Eigen::SparseMatrix<double> uniform_laplacian(const VertexRing& ring);
+
 }  // namespace reliefkit

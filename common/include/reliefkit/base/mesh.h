@@ -83,4 +83,14 @@ MeshTopology mesh_topology(const TriMesh& mesh);
 /// The same from the vertex-face adjacency the caller built already.
 MeshTopology mesh_topology(const TriMesh& mesh, VertexFaces faces);
 
+/// An edge of the mesh with the faces along it: a < b; `faces` counts them (2 inside a manifold,
+/// 1 on the border), `face` holds the first two by index (-1 when there are fewer).
+struct MeshEdge {
+  int a = 0, b = 0;
+  int faces = 0;
+  std::array<int, 2> face{-1, -1};
+};
+/// Every edge once, from the vertex-face adjacency; sorted by (a, b).
+std::vector<MeshEdge> mesh_edges(const TriMesh& mesh, const VertexFaces& vf);
+
 }  // namespace reliefkit

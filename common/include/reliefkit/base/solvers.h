@@ -16,13 +16,22 @@
 #pragma once
 
 #include <Eigen/Sparse>
+#include <memory>
 #include <string>
 
 #include "reliefkit/base/mesh.h"
 
 namespace reliefkit {
 
-enum class SolverMethod { Auto, Iterative, Direct };
+/// A symmetric matrix's compressed columns are its compressed rows: the row-major view of the same
+/// arrays lets Eigen's sparse products run on every core.
+inline Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor>> row_major(const Eigen::SparseMatrix<double>& A) {
+  return {A.rows(), A.cols(), A.nonZeros(), A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr()};
+}
+
+/// Auto: TwoLevel when the caller expects an ill-conditioned system (prefer_direct), else Iterative;
+/// each falls back to Direct when it does not converge (and Direct to Iterative).
+enum class SolverMethod { Auto, Iterative, Direct, TwoLevel };
 
 struct SolverOptions {
   SolverMethod method = SolverMethod::Auto;
@@ -61,5 +70,37 @@ constexpr double kDirectAboveIterations = 400;
 
 /// Largest system Auto hands to the direct solver (unknowns); larger ones stay iterative.
 constexpr int kDirectMaxUnknowns = 2500000;
+
+/// A Cholesky factorization (CHOLMOD) kept across the solves of systems that share one sparsity
+/// pattern: the fill-reducing ordering is computed for the first matrix and the numeric
+/// factorization again only when the values change, so a repeated matrix costs its solve alone.
+class SpdFactorization {
+ public:
+  /// Amd: AMD alone, quick to compute (best for one factorization). Best: CHOLMOD's own choice
+  /// (METIS too when AMD's fill is high): slower to compute, less fill for many factorizations.
+  enum class Ordering { Amd, Best };
+  explicit SpdFactorization(Ordering ordering = Ordering::Amd);
+  ~SpdFactorization();
+  SpdFactorization(const SpdFactorization&) = delete;
+  SpdFactorization& operator=(const SpdFactorization&) = delete;
+
+  /// Factorizes A (symmetric, both triangles stored) unless it is the matrix factorized last.
+  /// False, with the reason in `why`, when the ordering or the factorization fails.
+  bool factorize(const Eigen::SparseMatrix<double>& A, std::string& why);
+  /// X = A^-1 B for the matrix factorized last; false when the solve fails or is not finite.
+  bool solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X);
+  int orderings() const;       // sparsity patterns ordered so far
+  int factorizations() const;  // numeric factorizations so far
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// solve_spd by Cholesky alone, with the factorization kept in `factorization` for the next call
+/// (options.method is not read). Never throws for a numerical failure: the report says what
+/// happened (converged false, note); throws InputError only for inconsistent sizes.
+SolveReport solve_spd(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& X,
+                      SpdFactorization& factorization, const SolverOptions& options = {});
 
 }  // namespace reliefkit

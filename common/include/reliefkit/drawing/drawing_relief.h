@@ -13,6 +13,8 @@
 
 #include "reliefkit/drawing/drawing_interpretation.h"
 #include "reliefkit/base/solvers.h"
+#include "reliefkit/base/surface.h"
+#include "reliefkit/base/zero_crossings.h"
 
 namespace reliefkit {
 
@@ -37,7 +39,11 @@ struct DrawingRelief {
 /// The relief (height over the base, per base vertex). Without `pixel_of_vertex` the base lies in
 /// the drawing's plane: pixel (px, py) is at (px * pixel_size, -py * pixel_size). With it, it gives
 /// each base vertex's position in the drawing (px; NaN where the drawing does not cover the base:
-/// height 0 there), e.g. from project_drawing. The Laplacians are the base's own (cotangent).
+/// height 0 there), e.g. from project_drawing. The Laplacians are the base's own (cotangent, from
+/// the run's Surface: a base layer's adjacency is the one its repair built).
+DrawingRelief reconstruct_drawing_relief(const Surface& base, const DrawingCurves& curves,
+                                         const DrawingInterpretation& interpretation, const DrawingReliefParams& params,
+                                         const std::vector<Vec2>* pixel_of_vertex = nullptr);
 DrawingRelief reconstruct_drawing_relief(const TriMesh& base, const DrawingCurves& curves,
                                          const DrawingInterpretation& interpretation, const DrawingReliefParams& params,
                                          const std::vector<Vec2>* pixel_of_vertex = nullptr);
@@ -57,9 +63,11 @@ struct DrawingProjection {
 /// uniformly to fit the base's projected bounding box and centred on it, its longer side along the
 /// base's longer projected side. A vertex is covered when it faces the viewer and nothing of the
 /// base lies in front of it.
+DrawingProjection project_drawing(const Surface& base, const cv::Rect& extent, Vec3 view = Vec3(0, 0, 0));
 DrawingProjection project_drawing(const TriMesh& base, const cv::Rect& extent, Vec3 view = Vec3(0, 0, 0));
 
 /// The base's vertices moved along their normals by `height` (normals of the base).
+TriMesh displace_along_normals(const Surface& base, const std::vector<double>& height);
 TriMesh displace_along_normals(const TriMesh& base, const std::vector<double>& height);
 
 /// A regular grid over pixels [x0, x0 + width - 1] x [y0, y0 + height - 1] of the drawing (one vertex
@@ -81,5 +89,30 @@ enum class DrawingBase { Plane, Cylinder };
 /// mesh units; image x runs round it, x = `front` faces +z) and raised along the outward normal (Cylinder).
 TriMesh relief_surface(const TriMesh& grid, const std::vector<double>& height, DrawingBase base, double circumference,
                        double front = 0);
+
+// ---- the drawing's curves and levels on the relief (relief_layers.cpp) ---------------------
+
+/// The curves as polylines in the drawing's plane, in mesh units (image x right, y up, z 0; one
+/// pixel = `pixel_size`), one segment between successive points; strength = the curve's index.
+Polylines drawing_polylines(const DrawingCurves& curves, double pixel_size);
+
+/// The level of the region at each drawing position (px, rounded to the pixel); -1 on a curve,
+/// outside the image, or for a NaN position (a vertex the drawing does not cover).
+std::vector<double> region_levels(const DrawingInterpretation& interpretation, const std::vector<Vec2>& pixel);
+
+/// The curves on a relief built on a base layer the drawing was projected onto (project_drawing;
+/// `relief`: the base displaced, vertex for vertex): each curve point goes to the covered vertex
+/// nearest to it in the drawing (found in a hash grid of the covered vertices' pixel positions, cells
+/// of two edge lengths), moved within the image plane by what is left of the offset. A point with no
+/// covered vertex in its 3 x 3 cells is dropped, with its segments.
+Polylines curves_on_projected_relief(const DrawingCurves& curves, const DrawingProjection& projection,
+                                     const TriMesh& relief);
+
+/// The curves on a relief built on drawing_grid(area.width, area.height, cell, pixel_size, area.x,
+/// area.y) with heights `height`: each curve point at the height of the grid below it (bilinear),
+/// then laid on the base like the grid (relief_surface).
+Polylines curves_on_grid_relief(const DrawingCurves& curves, double pixel_size, const cv::Rect& area, double cell,
+                                const std::vector<double>& height, DrawingBase base, double circumference,
+                                double front = 0);
 
 }  // namespace reliefkit

@@ -43,10 +43,20 @@ void drop_banks(Polylines& curves, const OptimalScale& scale, int flanked_sign);
 
 /// Per vertex, the tilt noise leaves on the optimally smoothed surface (noise_tilt at each level's
 /// scale combined with the final smoothing, interpolated log-linearly in log σ at the vertex's scale).
+/// Simulated on the run's noise patch (scale.noise_patch) when it carries the scan's noise, else on
+/// one patch built here for all levels.
 std::vector<double> noise_tilt_at_scales(const OptimalScale& scale, double final_smoothing_edges, long long faces);
 
 /// `scale.curve` is set to the detector's strength; `params.presmoothing` is ignored (the optimal
-/// scale replaces it).
+/// scale replaces it). The run's `surface` gives the scan's topology, scale and noise. Ridges and
+/// valleys are drawn on the optimally smoothed surface as surface.with_positions(...); the relief
+/// edges' detector gives that surface its own scale and noise (its lengths are in the smoothed
+/// surface's median edge, as before the run's Surface; see docs/multiscale.md).
+MultiscaleRidgeValleys multiscale_ridges_valleys(const Surface& surface, OptimalScaleOptions scale,
+                                                 RidgeValleyParams params = {});
+MultiscaleReliefEdges multiscale_relief_edges(const Surface& surface, OptimalScaleOptions scale,
+                                              ReliefEdgeParams params = {});
+/// The same over a mesh of the caller's (tests, benchmarks).
 MultiscaleRidgeValleys multiscale_ridges_valleys(const TriMesh& mesh, OptimalScaleOptions scale,
                                                  RidgeValleyParams params = {});
 MultiscaleReliefEdges multiscale_relief_edges(const TriMesh& mesh, OptimalScaleOptions scale,

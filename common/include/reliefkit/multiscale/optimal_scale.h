@@ -33,6 +33,7 @@
 //    in single precision), then a light diffusion of `final_smoothing_edges` removes the seams.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "reliefkit/base/curvature.h"
@@ -40,6 +41,7 @@
 #include "reliefkit/base/scale.h"
 #include "reliefkit/multiscale/scale_space.h"
 #include "reliefkit/base/solvers.h"
+#include "reliefkit/base/surface.h"
 #include "reliefkit/base/zero_crossings.h"
 
 namespace reliefkit {
@@ -136,11 +138,19 @@ struct OptimalScaleOptions {
   bool smoothed_surface = false;                      // also build the optimally smoothed surface
   double final_smoothing_edges = 0.5;                 // the light smoothing after assembling it
   ScaleSpaceOptions::Stepping stepping = ScaleSpaceOptions::Stepping::Auto;
-  const MeshTopology* topology = nullptr;
   Progress progress = nullptr;
-  double noise_floor = -1;  // < 0: level_noise measured on a noise patch; 0: this is that patch (measure it)
   /// Throws InputError naming the first parameter out of its range.
   void validate() const;
+};
+
+/// A noise patch (noise_patch, reliefkit/base/scale.h) as a Surface: what the estimated noise alone
+/// draws is simulated on it. A run builds it once and every stage that simulates noise shares it.
+struct NoisePatch {
+  double relative_noise = 0;  // the noise it carries (edge lengths)
+  int cells = 0;              // its size (noise_patch_cells)
+  std::shared_ptr<const Surface> surface;
+  /// This patch when it carries `relative_noise` at this size, else a new one that does.
+  Surface carrying(double relative_noise, int cells) const;
 };
 
 struct OptimalScale {
@@ -160,8 +170,9 @@ struct OptimalScale {
   std::vector<Vec3> smoothed;    // #V the optimally smoothed surface, when asked
   std::vector<Mat3> base_shape;  // #V the base surface's shape operator, with the smoothed surface
   std::vector<Vec3> base_normal; // #V and its unit normals
-  std::vector<double> level_noise;  // per level: what noise alone reaches (99th percentile of t^γ f on a patch
-                                    // with the estimated noise); strengths count above it
+  std::vector<double> level_noise;  // per level: what noise alone reaches (99th percentile of t^γ f on
+                                    // noise_patch); strengths count above it
+  NoisePatch noise_patch;        // the estimated noise, at least kMinScaleNoise
   double strength_floor = 0;     // the largest of them (fill weights, curve thresholds)
   NoiseEstimate noise;           // the scan's estimated noise
   double strength_ref = 0;       // f_max of eq. 5.3 (99.9th percentile of the strengths)
@@ -170,6 +181,10 @@ struct OptimalScale {
   ScaleSpaceReport base_space;   // ridges & valleys: the base surface (twice the largest scale)
 };
 
+/// The scan's topology, scale and noise come from the run's `surface`; every level of the scale
+/// space is surface.with_positions(...). The noise floor is simulated once, on `noise_patch`.
+OptimalScale optimal_scale(const Surface& surface, const OptimalScaleOptions& options = {});
+/// The same over a mesh of the caller's (tests, benchmarks).
 OptimalScale optimal_scale(const TriMesh& mesh, const OptimalScaleOptions& options = {});
 
 /// The strength of a level: max(|k1|, |k2|), or max over u of C(u, u, u).

@@ -36,4 +36,16 @@ double relief_edge_optimal_scale(double t0, double gamma);
 /// strength; the end scales when the peak is at an end (the range did not bracket it).
 double select_scale(const std::vector<double>& t, const double* f, int stride, double gamma);
 
+/// Where a scale x lies among the levels of a scale space, given as increasing values u (log σ,
+/// say): the levels `lower` and `upper` around it (adjacent; the same one when there is a single
+/// level) and x's weight towards `upper`, linear in u and clamped to [0, 1], so that a scale
+/// beyond the range takes the end level. `u` must not be empty.
+struct ScaleBracket {
+  int lower = 0, upper = 0;
+  double weight = 0;
+  /// (1 − weight) a + weight b: a per-level value at the scale.
+  double mix(double a, double b) const { return (1 - weight) * a + weight * b; }
+};
+ScaleBracket bracket_scale(const std::vector<double>& u, double x);
+
 }  // namespace reliefkit

@@ -26,6 +26,7 @@
 
 #include "reliefkit/base/mesh.h"
 #include "reliefkit/base/solvers.h"
+#include "reliefkit/base/surface.h"
 
 namespace reliefkit {
 
@@ -45,7 +46,6 @@ struct ScaleSpaceOptions {
   bool reweight = true;
   SolverMethod method = SolverMethod::Auto;
   double tolerance = 1e-4;  // relative residual of each step's displacement
-  const MeshTopology* topology = nullptr;  // the mesh's connectivity, when the caller has it
   Progress progress = nullptr;
 };
 
@@ -59,10 +59,17 @@ struct ScaleSpaceReport {
   std::vector<char> level_explicit; // per level: reached by explicit steps
 };
 
-/// Diffuses the mesh to each Gaussian scale in `sigmas` (mesh units, increasing, > 0) and calls
-/// visit(level, mesh at that scale) in order. Throws InputError for a mesh without faces or
-/// scales that are not positive and increasing.
+using ScaleSpaceVisitor = std::function<void(int level, const Surface& smoothed)>;
+
+/// Diffuses the surface to each Gaussian scale in `sigmas` (mesh units, increasing, > 0) and calls
+/// visit(level, the surface at that scale) in order. Each level is surface.with_positions(...):
+/// the run's topology, scale and noise, its own normals and Laplacian (the next level's operator
+/// when `reweight`); the first step takes the input surface's Laplacian. Throws InputError for a
+/// mesh without faces or scales that are not positive and increasing.
+ScaleSpaceReport scale_space(const Surface& surface, const std::vector<double>& sigmas,
+                             const ScaleSpaceOptions& options, const ScaleSpaceVisitor& visit);
+/// The same over a mesh of the caller's (tests, benchmarks).
 ScaleSpaceReport scale_space(const TriMesh& mesh, const std::vector<double>& sigmas, const ScaleSpaceOptions& options,
-                             const std::function<void(int level, const TriMesh& smoothed)>& visit);
+                             const ScaleSpaceVisitor& visit);
 
 }  // namespace reliefkit

@@ -82,15 +82,18 @@ constexpr double kFeatureCurvaturePercentile = 0.9;
 /// Largest normalised fit error of a relief-edge point (Relief Edges' default for strong seeds).
 constexpr double kFeatureFitError = 0.5;
 
+/// Chapter 4's per-vertex relief-edge fields (compute_relief_edge_fields; no curves), r_p, beta_p
+/// and the smooth field, on the run's Surface.
+ProminentFieldResult compute_prominent_field(const Surface& surface, const ProminentFieldParams& params = {});
 ProminentFieldResult compute_prominent_field(const TriMesh& mesh, const ProminentFieldParams& params = {});
 
 /// The smooth-field stage alone (eqs. 6.3, 6.6), for callers that have r_p and beta_p: tangent
-/// frames (normal, e1) per vertex, r_p and beta_p per vertex. Writes field, strength, unreached,
-/// solve of `out`.
-void solve_prominent_field(const TriMesh& mesh, const MeshTopology& topology, const std::vector<Vec3>& normal,
-                           const std::vector<Vec3>& e1, const std::vector<Vec3>& target,
-                           const std::vector<double>& beta, double weight, FieldRepresentation representation,
-                           ProminentFieldResult& out);
+/// frames (normal, e1) per vertex, r_p and beta_p per vertex. The surface's clamped cotangent
+/// Laplacian (the base normals' own) gives the weights and areas. Writes field, strength,
+/// unreached, solve of `out`.
+void solve_prominent_field(const Surface& surface, const std::vector<Vec3>& normal, const std::vector<Vec3>& e1,
+                           const std::vector<Vec3>& target, const std::vector<double>& beta, double weight,
+                           FieldRepresentation representation, ProminentFieldResult& out);
 
 // ---- Enhancement (thesis 6.4) ----
 
@@ -129,6 +132,8 @@ struct EnhanceResult {
   double bilateral_seconds = 0, flow_seconds = 0;
 };
 
+/// The prominent field of the surface, then the bilateral filter along it and the flow.
+EnhanceResult enhance_relief(const Surface& surface, const EnhanceParams& params = {});
 EnhanceResult enhance_relief(const TriMesh& mesh, const EnhanceParams& params = {});
 
 /// One bilateral pass (eqs. 6.7-6.8) of `positions` over `mesh`'s connectivity: neighbours within

@@ -31,7 +31,7 @@ CurvatureDerivative edge_correlation_form(const CurvatureDerivative& C);
 /// 0 for a perfect step edge.
 double edge_fit_error(const CurvatureDerivative& C, double k1, double k2, double f, double radius);
 
-struct ReliefEdgeParams {
+struct ReliefEdgeParams {  // what the user chooses
   static constexpr double kDefaultEdgeSmoothingEdges = 0.8;  // x edge length (thesis 4.4)
   static constexpr double kDefaultMinLengthEdges = 2.0;      // x edge length
   static constexpr double kDefaultFitRadiusEdges = 4.0;      // x edge length (see relief_edges.md)
@@ -45,25 +45,34 @@ struct ReliefEdgeParams {
   double link_gap_edges = kDefaultLinkGapEdges;  // join curve ends facing each other across gaps up to this
   double fit_radius_edges = kDefaultFitRadiusEdges;  // at least; see kFitRadiusWidths
   bool restrict_orientation = true;
-  double weak_angle = 11.0 * 3.14159265358979323846 / 180;  // no restriction at or below (thesis)
+  /// The orientation is restricted only where the surface tilts more than this against the base
+  /// (radians; the thesis' 11 degrees): below it the base direction means little.
+  double restriction_min_tilt = 11.0 * 3.14159265358979323846 / 180;
   // Two-dimensional hysteresis: strong points seed, weak points connected to them are kept.
-  double strong_error = 0.5, weak_error = 0.8;              // normalised fit error, at most
-  double strong_angle = 0, weak_angle_h = 0;                // radians, at least; 0: automatic
-  /// A base surface given by the caller (multi-scale detection: the surface at twice the largest
-  /// scale), per vertex: its unit normals replace the estimated base normals, and G is measured
-  /// over its shape operator (world coordinates), g^T (II - II_base) g — the curvature of the
-  /// local image alone (thesis fig. 4.2). On a curved base a wide soft step's curvature crosses
-  /// zero where it cancels the base's, off the step's centre (4 edge lengths on the test cylinder,
-  /// radius 286 edge lengths, for a step 10 edge lengths wide). Both empty: estimated as usual.
-  const std::vector<Vec3>* given_base_normals = nullptr;
-  const std::vector<Mat3>* given_base_shape = nullptr;
-  /// Per vertex, the noise tilt where the surface was smoothed by different amounts (multi-scale:
-  /// noise_tilt at each vertex's own scale, radians): strong points must tilt more, weak ones
-  /// half as much, besides the global thresholds; the global noise_tilt is then not applied.
-  const std::vector<double>* vertex_noise_tilt = nullptr;
-  /// Per vertex, the width of the features there (multi-scale: each vertex's own scale, mesh
-  /// units): the fit-error radius is at least kFitRadiusWidths x it (see kFitRadiusWidths).
-  const std::vector<double>* vertex_feature_width = nullptr;
+  double strong_error = 0.5, weak_error = 0.8;  // normalised fit error, at most
+  double strong_angle = 0, weak_angle = 0;      // tilt, radians, at least; 0: automatic
+  Progress progress = nullptr;
+  /// Throws InputError naming the first parameter out of its range.
+  void validate() const;
+};
+
+/// What another stage supplies to the detector besides the user's choices (the multi-scale
+/// detector of chapter 5 on its optimally smoothed surface). Every per-vertex input is empty
+/// (not given) or holds one value per vertex; the default guidance changes nothing.
+struct ReliefEdgeGuidance {
+  /// A base surface, per vertex: its unit normals replace the estimated base normals, and G is
+  /// measured over its shape operator (world coordinates), g^T (II - II_base) g — the curvature
+  /// of the local image alone (thesis fig. 4.2). On a curved base a wide soft step's curvature
+  /// crosses zero where it cancels the base's, off the step's centre (4 edge lengths on the test
+  /// cylinder, radius 286 edge lengths, for a step 10 edge lengths wide).
+  std::vector<Vec3> base_normals;
+  std::vector<Mat3> base_shape;
+  /// The noise tilt where the surface was smoothed by different amounts (radians): strong points
+  /// must tilt more, weak ones half as much, besides the global thresholds; the global noise
+  /// tilt is then not applied.
+  std::vector<double> noise_tilt;
+  /// The width of the features (mesh units): the fit-error radius is at least kFitRadiusWidths x it.
+  std::vector<double> feature_width;
   /// Keep only the crossings where the slope is steepest (G rising up the slope, g), not those
   /// where it is least steep (between two steps, or a wide step's noise wiggles).
   bool steepest_only = false;
@@ -71,12 +80,11 @@ struct ReliefEdgeParams {
   /// normal's tangential part along g) instead of the whole tilt: a seam or wiggle crossing a
   /// slope tilts with the slope, not across itself.
   bool tilt_across = false;
-  Progress progress = nullptr;
-  /// Throws InputError naming the first parameter out of its range.
-  void validate() const;
 };
 
-struct ReliefEdgeResult : ScaledCurvature {  // scale, noise, pre-smoothing used, curvature
+/// The per-vertex relief-edge fields (steps 1-5: scale, curvature, base, edge model, smoothing);
+/// what the prominent field (chapter 6) needs, without the curves.
+struct ReliefEdgeFields : ScaledCurvature {  // scale, noise, pre-smoothing used, curvature
   BaseNormals base;
   std::vector<Vec3> direction;    // #V g: unit tangent perpendicular to the edge, pointing up the step
   std::vector<double> G;          // #V g^T II g after edge smoothing
@@ -84,13 +92,21 @@ struct ReliefEdgeResult : ScaledCurvature {  // scale, noise, pre-smoothing used
   std::vector<double> fit_error;  // #V normalised fit error (eq. 4.7 / ||S||^2)
   std::vector<double> angle;      // #V angle between surface and base normal, radians
   double window = 0;              // orientation window w, radians
-  int links = 0;                  // gaps bridged (link_gaps)
-  double strong_angle = 0, weak_angle = 0;  // hysteresis angles used
+  double base_scale = 0, edge_smoothing = 0, fit_radius = 0;  // used, mesh units
+  double feature_width = 0;       // feature_width() of the pre-smoothed surface, mesh units
+};
+
+/// The hysteresis thresholds on the tilt, from the zero crossings of G (step 6).
+struct ReliefEdgeThresholds {
+  double strong_angle = 0, weak_angle = 0;  // hysteresis tilts used, radians
   double automatic_angle = 0;     // automatic_curve_threshold of the crossing tilts
   double noise_angle = 0;         // noise_tilt: what the estimated noise alone tilts the surface by
   double steepest_crossing = 0;   // the steepest edge crossing seen, radians (to explain an empty result)
-  double base_scale = 0, edge_smoothing = 0, min_length = 0, fit_radius = 0;  // used, mesh units
-  double feature_width = 0;       // feature_width() of the pre-smoothed surface, mesh units
+};
+
+struct ReliefEdgeResult : ReliefEdgeFields, ReliefEdgeThresholds {
+  double min_length = 0;          // used, mesh units
+  int links = 0;                  // gaps bridged (link_gaps)
   Polylines edges;
 };
 
@@ -103,6 +119,9 @@ constexpr double kNoiseTiltFactor = 2.0;
 /// The tilt (radians) that noise of the estimated level leaves after the same pre-smoothing:
 /// kNoiseCurvePercentile of the normals' tilt on noise_patch, x kNoiseTiltFactor.
 double noise_tilt(const NoiseEstimate& noise, double presmoothing_edges, int patch_cells = 100);
+/// The same on a noise patch the caller keeps (noise_patch(noise, patch_cells) as a Surface), so that
+/// a run measuring the tilt at several pre-smoothings builds one patch.
+double noise_tilt(const Surface& patch, int patch_cells, double presmoothing_edges);
 
 /// The fit-error radius and the automatic base scale follow the features' own width (feature_width)
 /// where it spans more than a few triangles: radius at least kFitRadiusWidths x the width, base
@@ -116,7 +135,22 @@ constexpr double kBaseScaleWidths = 9.0;
 /// Largest turn (radians) a gap-bridging link may make against the directions of the two ends.
 constexpr double kLinkTurn = 0.78539816339744831;
 
-ReliefEdgeResult compute_relief_edges(const Surface& surface, const ReliefEdgeParams& params = {});
-ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParams& params = {});
+/// Steps 1-5: the per-vertex fields.
+ReliefEdgeFields compute_relief_edge_fields(const Surface& surface, const ReliefEdgeParams& params = {},
+                                            const ReliefEdgeGuidance& guidance = {});
+/// The zero crossings of the fields' G along g: every candidate relief-edge point, its strength
+/// the tilt against the base (across the edge with guidance.tilt_across).
+Polylines relief_edge_crossings(const Surface& surface, const ReliefEdgeFields& fields,
+                                const ReliefEdgeGuidance& guidance = {});
+/// Step 6: the hysteresis tilts, automatic from `crossings` and the noise unless the user set them.
+ReliefEdgeThresholds relief_edge_thresholds(const Surface& surface, const ReliefEdgeFields& fields,
+                                            const Polylines& crossings, const ReliefEdgeParams& params = {},
+                                            const ReliefEdgeGuidance& guidance = {});
+
+/// The fields, their crossings, the thresholds and the curves the hysteresis keeps (step 7).
+ReliefEdgeResult compute_relief_edges(const Surface& surface, const ReliefEdgeParams& params = {},
+                                      const ReliefEdgeGuidance& guidance = {});
+ReliefEdgeResult compute_relief_edges(const TriMesh& mesh, const ReliefEdgeParams& params = {},
+                                      const ReliefEdgeGuidance& guidance = {});
 
 }  // namespace reliefkit
