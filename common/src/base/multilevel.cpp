@@ -102,6 +102,7 @@ void TwoLevelPreconditioner::apply(const Eigen::MatrixXd& R, Eigen::MatrixXd& Z)
   Eigen::MatrixXd coarse_residual = Eigen::MatrixXd::Zero(p.coarse_size, R.cols());
   for (int i = 0; i < n; ++i) coarse_residual.row(p.aggregate[size_t(i)]) += residual.row(i);
   const Eigen::MatrixXd correction = p.coarse.solve(coarse_residual);
+#pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) Z.row(i) += correction.row(p.aggregate[size_t(i)]);  // coarse correction
   residual = R - p.A * Z;
   Z += w.asDiagonal() * residual;  // smoothing again: the cycle stays symmetric

@@ -2,6 +2,7 @@
 #include "reliefkit/base/work_counts.h"
 
 #include <algorithm>
+#include <parallel/algorithm>
 #include <cstring>
 #include <cstdint>
 #include <array>
@@ -76,7 +77,9 @@ std::vector<int> first_at_same_position(const TriMesh& mesh, long long& welded) 
   std::vector<std::pair<uint64_t, int>> keyed(nv);
 #pragma omp parallel for schedule(static)
   for (int v = 0; v < nv; ++v) keyed[v] = {position_hash(mesh.vertices[v]), v};
-  std::sort(keyed.begin(), keyed.end());
+  // The pairs are distinct (one per vertex), so libstdc++'s parallel sort gives the one order a
+  // serial sort gives, on every core.
+  __gnu_parallel::sort(keyed.begin(), keyed.end());
   std::vector<int> rep_of(nv, -1);
   for (int i = 0; i < nv;) {
     int j = i;

@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <limits>
 #include <cctype>
 #include <cstdint>
 #include <cstdlib>
@@ -66,21 +67,31 @@ MeshScale mesh_scale(const TriMesh& mesh) {
   const double min_faces = kMainPartShare * double(s.main_faces);
   s.counts.assign(nv, 0);
   for (int v = 0; v < nv; ++v) s.counts[v] = double(faces_of[find_root(parent, v)]) >= min_faces;
+  // The main part's edge lengths (each face's three, NaN elsewhere), computed on every core, then
+  // summed in face order: the same sum, bit for bit, as one pass.
+  const long long nf = static_cast<long long>(mesh.faces.size());
+  std::vector<double> face_len(size_t(nf) * 3, std::numeric_limits<double>::quiet_NaN());
+#pragma omp parallel for schedule(static)
+  for (long long i = 0; i < nf; ++i) {
+    if (face_root[size_t(i)] != main_root) continue;
+    const auto& f = mesh.faces[size_t(i)];
+    for (int j = 0; j < 3; ++j) face_len[size_t(3 * i + j)] = (mesh.vertices[f[j]] - mesh.vertices[f[(j + 1) % 3]]).norm();
+  }
   std::vector<float> len;
   len.reserve(size_t(s.main_faces) * 3);
   double sum = 0;
   Eigen::AlignedBox3d box;
-  for (size_t i = 0; i < mesh.faces.size(); ++i) {
-    if (face_root[i] < 0) continue;
-    if (face_root[i] != main_root) {
-      if (double(faces_of[face_root[i]]) < min_faces) ++s.debris_faces;
+  for (long long i = 0; i < nf; ++i) {
+    if (face_root[size_t(i)] < 0) continue;
+    if (face_root[size_t(i)] != main_root) {
+      if (double(faces_of[face_root[size_t(i)]]) < min_faces) ++s.debris_faces;
       continue;
     }
-    const auto& f = mesh.faces[i];
+    const auto& f = mesh.faces[size_t(i)];
     for (int j = 0; j < 3; ++j) {
       const Vec3& p = mesh.vertices[f[j]];
       if (p.allFinite()) box.extend(p);
-      double l = (p - mesh.vertices[f[(j + 1) % 3]]).norm();
+      const double l = face_len[size_t(3 * i + j)];
       if (std::isfinite(l)) len.push_back(float(l)), sum += l;
     }
   }

@@ -153,25 +153,24 @@ SolveReport solve_spd(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixX
   const bool direct_first = o.method == SolverMethod::Direct ||
                             (o.method == SolverMethod::Auto && o.prefer_direct && small_enough);
   std::string why;
-  const bool two_level_first = o.method == SolverMethod::TwoLevel || (o.method == SolverMethod::Auto && o.prefer_direct);
-  if (two_level_first) {
-    rep.method = "conjugate gradients, two-level preconditioner";
-    if (two_level(A, B, X, o, rep, why)) {
+  // One attempt with one solver: true when it converged (the report then says which one).
+  auto attempt = [&](const char* method, bool converged) {
+    rep.method = method;
+    if (converged) {
       rep.converged = true;
       report_progress(o, 1.0, o.label);
-      return rep;
+    } else {
+      rep.note = rep.note.empty() ? why : rep.note + "; " + why;
     }
-    rep.note = why;
+    return converged;
+  };
+  const bool two_level_first = o.method == SolverMethod::TwoLevel || (o.method == SolverMethod::Auto && o.prefer_direct);
+  if (two_level_first) {
+    if (attempt("conjugate gradients, two-level preconditioner", two_level(A, B, X, o, rep, why))) return rep;
     X = guess;
   }
   if (direct_first) {
-    rep.method = "Cholesky (CHOLMOD)";
-    if (direct(A, B, X, o, rep, why)) {
-      rep.converged = true;
-      report_progress(o, 1.0, o.label);
-      return rep;
-    }
-    rep.note = why;
+    if (attempt("Cholesky (CHOLMOD)", direct(A, B, X, o, rep, why))) return rep;
     if (o.method == SolverMethod::Direct) {
       rep.residual = relative_residual(A, B, X);
       return rep;

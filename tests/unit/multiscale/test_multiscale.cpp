@@ -20,9 +20,11 @@ using rktest::AxialFeature;
 namespace {
 
 // 1,800 cells around a cylinder of radius 1: h = 0.0035, so the thesis' tolerance of 0.5 % of the
-// radius is 1.4 edge lengths.
+// radius is 1.4 edge lengths. The features run along the axis; the relief-edge bands are read as
+// well on a cylinder of 29 rows (104 K faces, scored on 22 rows away from the ends) as on the
+// ridges' 72 rows, where a short one would let a single scale come within 0.15 of multi-scale F1.
 constexpr int kAround = 1800;
-constexpr double kLength = 0.25, kTolerance = 0.005;
+constexpr double kLength = 0.25, kBandLength = 0.1, kTolerance = 0.005;
 
 struct Score {
   const char* name;
@@ -202,7 +204,7 @@ TEST(Multiscale, ReliefEdgesOfASharpNarrowBandAndAWideSoftStep) {
                      sharp ? 2.5 * h : 60 * h, sharp ? 0 : 1});
   }
   for (double noise : {0.2, 0.02}) {
-    const rktest::AxialCylinder cyl = rktest::axial_cylinder(bands, kAround, kLength, noise);
+    const rktest::AxialCylinder cyl = rktest::axial_cylinder(bands, kAround, kBandLength, noise);
     auto evaluate = [&](const char* name, const Polylines& edges) {
       const auto s = rktest::score_axial(cyl, edges, {AxialFeature::Band}, kTolerance, 3 * cyl.edge);
       Score r{name};
@@ -215,8 +217,8 @@ TEST(Multiscale, ReliefEdgesOfASharpNarrowBandAndAWideSoftStep) {
     std::printf("noise %.0f %% (fine: the narrow band, coarse: the soft one)\n", 100 * noise);
     const MultiscaleReliefEdges ms = multiscale_relief_edges(cyl.mesh, {});
     const Score multi = evaluate("multi-scale", ms.curves.edges);
-    // Measured: recall 1.000 / 1.000 at both noise levels, precision 1.000 at 20 %, 0.978 at 2 %
-    // (was asserted 0.95 / 0.95 / 0.8).
+    // Measured: recall 1.000 / 1.000 at both noise levels, precision 1.000 at 20 % and at 2 % (0.978
+    // at 2 % on 72 rows; was asserted 0.95 / 0.95 / 0.8).
     EXPECT_GE(multi.fine, 0.99) << noise;
     EXPECT_GE(multi.coarse, 0.99) << noise;
     EXPECT_GE(multi.precision, noise > 0.1 ? 0.99 : 0.93) << noise;
