@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # All tests, from a fresh machine: set-up, Release build with the MeshLab plugins, unit and
 # integration tests (the real meshlabserver on one virtual X display), a bounded libFuzzer run over
-# the cores (clang, AddressSanitizer + UndefinedBehaviorSanitizer + coverage), then the unit tests
-# built with AddressSanitizer + UndefinedBehaviorSanitizer alone (libFuzzer's comparison tracing
+# the cores (clang, AddressSanitizer + UndefinedBehaviorSanitizer + coverage) beside the build of the unit tests
+# with AddressSanitizer + UndefinedBehaviorSanitizer alone, then those tests (libFuzzer's comparison tracing
 # made them up to 60x slower: ScaleSpace.GaussianBump 424 s instead of 7 s). Compiles through ccache
 # (scripts/setup.sh installs it; CMakeLists.txt sets it up so that a clone in another folder hits the
 # same cache). Prints the time of each stage at the end.
@@ -18,8 +18,17 @@ trap 'stop_virtual_display; print_stages' EXIT
 # second job (measured on this 2-core machine; issue 21).
 export OMP_WAIT_POLICY=PASSIVE
 
+# ctest starts the longest tests first when it knows their times: a fresh build directory gets the
+# times of an earlier run (tests/costs/, copied from Testing/Temporary/CTestCostData.txt), so that
+# the last minutes are not one long test alone on one core. Tests missing there start last.
+seed_test_costs() {  # build-dir costs-file
+  mkdir -p "$1/Testing/Temporary"
+  [ -f "$1/Testing/Temporary/CTestCostData.txt" ] || cp "$2" "$1/Testing/Temporary/CTestCostData.txt"
+}
+
 stage "set-up and Release build" bash "$here/scripts/build.sh"
 start_virtual_display
+seed_test_costs "$here/build" "$here/tests/costs/release.txt"
 stage "unit and integration tests (Release, $jobs at a time)" \
   ctest --test-dir "$here/build" --output-on-failure -j"$jobs"
 
@@ -47,15 +56,25 @@ fuzz_cores() {
   [ -z "$(ls "$fuzz"/crash-* "$fuzz"/leak-* "$fuzz"/timeout-* "$fuzz"/oom-* 2>/dev/null)" ] || {
     echo "fuzzing found a failing input (kept in $fuzz): add it to tests/fuzz/regressions after fixing" >&2; return 1; }
 }
-stage "fuzzing the cores (replay of tests/fuzz/regressions, then ${RELIEFKIT_FUZZ_SECONDS:-60} s)" fuzz_cores
-
 asan="${RELIEFKIT_ASAN_BUILD_DIR:-$here/build-asan}"
 build_sanitized_tests() {
   cmake -S "$here" -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRELIEFKIT_SANITIZE=ON \
     -DRELIEFKIT_PLUGINS=OFF -DRELIEFKIT_BENCHMARKS=OFF >/dev/null
   cmake --build "$asan" -j"$jobs" --target reliefkit_unit_tests
 }
-stage "sanitizer build of the unit tests (ASan + UBSan)" build_sanitized_tests
+# The fuzzer runs on one core (one input at a time): the sanitizer build takes what is left, side
+# by side, and the stage ends when both have.
+fuzz_beside_sanitizer_build() {
+  local log="$fuzz/fuzzing.log" fuzzing
+  fuzz_cores >"$log" 2>&1 &
+  fuzzing=$!
+  build_sanitized_tests
+  if ! wait "$fuzzing"; then cat "$log"; return 1; fi
+  cat "$log"
+}
+stage "fuzzing the cores (regressions, then ${RELIEFKIT_FUZZ_SECONDS:-60} s) beside the sanitizer build of the unit tests" \
+  fuzz_beside_sanitizer_build
+seed_test_costs "$asan" "$here/tests/costs/sanitized.txt"
 stage "unit tests with AddressSanitizer + UndefinedBehaviorSanitizer" \
   env ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir "$asan" --output-on-failure -L unit -j"$jobs"
