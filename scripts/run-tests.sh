@@ -15,7 +15,8 @@ trap 'stop_virtual_display; print_stages' EXIT
 # Tests run two at a time, each with OpenMP on both cores: with the default policy, threads waiting
 # at a barrier spin and take the core from the other test's threads. Passive waiting made
 # ScaleSpace.GaussianBumpFlattensLikeAGaussianConvolution take 7.7 s instead of 117 s beside a
-# second job (measured on this 2-core machine; issue 21).
+# second job (on this 2-core machine, before the test was made smaller: `time build/tests/reliefkit_unit_tests
+# --gtest_filter=ScaleSpace.GaussianBump*` with and without OMP_WAIT_POLICY=passive; issue 21).
 export OMP_WAIT_POLICY=PASSIVE
 
 # ctest starts the longest tests first when it knows their times: a fresh build directory gets the

@@ -11,10 +11,10 @@
 //   - aggregates: greedy, each a vertex with its still-free neighbours (the matrix graph is the
 //     mesh's edge graph), left-over vertices joining the neighbouring aggregate they are most
 //     strongly coupled to — about 1/8 of the unknowns;
-//   - prolongation P: the aggregates' indicators (piecewise constant). Smoothing P by a Jacobi
-//     step, as smoothed aggregation does, saved 3 of 17 iterations at 60 edges but made the
-//     set-up 3x dearer (bench_solvers); a second round of aggregation (1/70 of the unknowns)
-//     doubled the iterations;
+//   - prolongation P: the aggregates' indicators (piecewise constant). Two variants were tried
+//     while writing this and not kept (so not in the benchmarks): smoothing P by a Jacobi step, as
+//     smoothed aggregation does, saved 3 of 17 iterations at 60 edges but made the set-up about
+//     3x dearer; a second round of aggregation (1/70 of the unknowns) doubled the iterations;
 //   - coarse operator Pᵀ A P (Galerkin: the couplings summed aggregate by aggregate), factorized
 //     once by CHOLMOD;
 //   - cycle: damped Jacobi, coarse correction, damped Jacobi — symmetric, so it is a valid
