@@ -1,5 +1,7 @@
 #include "rk_plugin.h"
 
+#include "reliefkit/base/memory.h"
+
 #include <cstdlib>
 #include <exception>
 
@@ -54,6 +56,7 @@ bool ReliefKitPlugin::applyFilter(QAction* a, MeshDocument& md, const RichParame
   if (md.mm() == nullptr && s.needs_mesh) return fail("there is no mesh layer to work on; open a mesh first.");
   try {
     reliefkit::reset_work_counts();
+    const reliefkit::RetainedMemory retained;  // one run: freed blocks reused, returned at the end
     FilterCall call{md, md.mm(), par, cb, [this](const QString& line) { Log(qUtf8Printable(log_text(line))); }};
     s.apply(call);
     if (std::getenv("RELIEFKIT_WORK_COUNTS")) call.log("Work counts of " + s.name + ": " + QString::fromStdString(reliefkit::work_counts().summary()));

@@ -66,7 +66,7 @@ VertexFaces vertex_faces(const TriMesh& mesh) {
   count_work(Work::Adjacency);
   VertexFaces vf;
   const int nv = mesh.n_vertices();
-  vf.offset.assign(nv + 1, 0);
+  sized(vf.offset, size_t(nv) + 1, 0);
   for (const auto& f : mesh.faces)
     for (int j = 0; j < 3; ++j) ++vf.offset[f[j] + 1];
   for (int v = 0; v < nv; ++v) vf.offset[v + 1] += vf.offset[v];

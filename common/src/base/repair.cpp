@@ -1,4 +1,5 @@
 #include "reliefkit/base/repair.h"
+#include "reliefkit/base/memory.h"
 #include "reliefkit/base/work_counts.h"
 
 #include <algorithm>
@@ -74,13 +75,15 @@ uint64_t position_hash(Vec3 p) {
 // their coordinates.
 std::vector<int> first_at_same_position(const TriMesh& mesh, long long& welded) {
   const int nv = mesh.n_vertices();
-  std::vector<std::pair<uint64_t, int>> keyed(nv);
+  std::vector<std::pair<uint64_t, int>> keyed;
+  sized(keyed, size_t(nv));
 #pragma omp parallel for schedule(static)
   for (int v = 0; v < nv; ++v) keyed[v] = {position_hash(mesh.vertices[v]), v};
   // The pairs are distinct (one per vertex), so libstdc++'s parallel sort gives the one order a
   // serial sort gives, on every core.
   __gnu_parallel::sort(keyed.begin(), keyed.end());
-  std::vector<int> rep_of(nv, -1);
+  std::vector<int> rep_of;
+  sized(rep_of, size_t(nv), -1);
   for (int i = 0; i < nv;) {
     int j = i;
     while (j < nv && keyed[j].first == keyed[i].first) ++j;
@@ -147,7 +150,8 @@ bool repeats_an_earlier_face(const TriMesh& mesh, const VertexFaces& vf, int i) 
 // 2. Drop faces collapsed by welding and duplicated faces (vf: the adjacency, renewed if faces go).
 void drop_collapsed_and_duplicate_faces(TriMesh& mesh, VertexFaces& vf, RepairReport& rep) {
   const int nf = mesh.n_faces();
-  std::vector<char> drop(nf, 0);
+  std::vector<char> drop;
+  sized(drop, size_t(nf), char(0));
   long long collapsed = 0, duplicates = 0;
   const bool welded = rep.welded_vertices > 0;
 #pragma omp parallel for schedule(dynamic, 4096) reduction(+ : collapsed, duplicates)
@@ -181,8 +185,10 @@ struct FaceNeighbours {
 // manifold edge (exactly two faces) gives a neighbour.
 FaceNeighbours face_neighbours(const TriMesh& mesh, const VertexFaces& vf) {
   const int nf = mesh.n_faces();
-  FaceNeighbours n{std::vector<std::array<int, 3>>(nf, {-1, -1, -1}),
-                   std::vector<std::array<char, 3>>(nf, {0, 0, 0}), std::vector<char>(nf, 1)};
+  FaceNeighbours n;
+  sized(n.across, size_t(nf), std::array<int, 3>{-1, -1, -1});
+  sized(n.same_direction, size_t(nf), std::array<char, 3>{0, 0, 0});
+  sized(n.closed, size_t(nf), char(1));
 #pragma omp parallel for schedule(dynamic, 4096)
   for (int f = 0; f < nf; ++f) {
     const auto& t = mesh.faces[f];
@@ -255,8 +261,11 @@ double signed_volume_6(const TriMesh& mesh, const std::vector<int>& part, const 
 // signed volume). Returns each face's flip (1: turned).
 std::vector<signed char> orient_parts(TriMesh& mesh, const FaceNeighbours& n, RepairReport& rep) {
   const int nf = mesh.n_faces();
-  std::vector<signed char> flip(nf, -1);
+  std::vector<signed char> flip;
+  sized(flip, size_t(nf), static_cast<signed char>(-1));
   std::vector<int> part;
+  part.reserve(size_t(nf));
+  advise_huge_pages(part.data(), size_t(nf) * sizeof(int));
   for (int seed = 0; seed < nf; ++seed) {
     if (flip[seed] >= 0) continue;
     bool closed = false;

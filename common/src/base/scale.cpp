@@ -1,4 +1,5 @@
 #include "reliefkit/base/scale.h"
+#include "reliefkit/base/memory.h"
 #include "reliefkit/base/work_counts.h"
 
 #include <Eigen/Dense>
@@ -9,6 +10,7 @@
 #include <cstdlib>
 #include <cmath>
 #include <numeric>
+#include <parallel/algorithm>
 #include <sstream>
 
 namespace reliefkit {
@@ -34,74 +36,111 @@ std::string number(double x) {
 
 }  // namespace
 
-MeshScale mesh_scale(const TriMesh& mesh) {
-  count_work(Work::MeshScale);
-  MeshScale s;
+namespace {
+
+// Connected parts (faces sharing a vertex): each vertex's root, and each face's (-1: a face with
+// a missing vertex).
+struct Parts {
+  std::vector<int> vertex_root, face_root;
+  std::vector<long long> faces_of;  // by root
+};
+
+Parts connected_parts(const TriMesh& mesh) {
   const int nv = mesh.n_vertices();
+  const long long nf = static_cast<long long>(mesh.faces.size());
   std::vector<int> parent(nv);
   std::iota(parent.begin(), parent.end(), 0);
+  auto valid = [nv](const std::array<int, 3>& f) {
+    return f[0] >= 0 && f[1] >= 0 && f[2] >= 0 && f[0] < nv && f[1] < nv && f[2] < nv;
+  };
   for (const auto& f : mesh.faces) {
-    if (f[0] < 0 || f[1] < 0 || f[2] < 0 || f[0] >= nv || f[1] >= nv || f[2] >= nv) continue;
+    if (!valid(f)) continue;
     int a = find_root(parent, f[0]);
     for (int j = 1; j < 3; ++j) {
       int b = find_root(parent, f[j]);
       if (a != b) parent[b] = a;
     }
   }
-  std::vector<long long> faces_of(nv, 0);
-  std::vector<int> face_root(mesh.faces.size(), -1);
-  for (size_t i = 0; i < mesh.faces.size(); ++i) {
-    const auto& f = mesh.faces[i];
-    if (f[0] < 0 || f[0] >= nv) continue;
-    face_root[i] = find_root(parent, f[0]);
-    ++faces_of[face_root[i]];
-  }
-  int main_root = -1;
-  for (int v = 0; v < nv; ++v)
-    if (faces_of[v] > 0) {
-      ++s.parts;
-      if (main_root < 0 || faces_of[v] > faces_of[main_root]) main_root = v;
-    }
-  if (main_root < 0) return s;
-  s.main_faces = faces_of[main_root];
-  const double min_faces = kMainPartShare * double(s.main_faces);
-  s.counts.assign(nv, 0);
-  for (int v = 0; v < nv; ++v) s.counts[v] = double(faces_of[find_root(parent, v)]) >= min_faces;
-  // The main part's edge lengths (each face's three, NaN elsewhere), computed on every core, then
-  // summed in face order: the same sum, bit for bit, as one pass.
-  const long long nf = static_cast<long long>(mesh.faces.size());
-  std::vector<double> face_len(size_t(nf) * 3, std::numeric_limits<double>::quiet_NaN());
+  Parts p;
+  p.vertex_root.resize(size_t(nv));
+  for (int v = 0; v < nv; ++v) p.vertex_root[size_t(v)] = find_root(parent, v);
+  sized(p.face_root, size_t(nf), -1);
 #pragma omp parallel for schedule(static)
   for (long long i = 0; i < nf; ++i) {
-    if (face_root[size_t(i)] != main_root) continue;
     const auto& f = mesh.faces[size_t(i)];
-    for (int j = 0; j < 3; ++j) face_len[size_t(3 * i + j)] = (mesh.vertices[f[j]] - mesh.vertices[f[(j + 1) % 3]]).norm();
+    if (f[0] >= 0 && f[0] < nv) p.face_root[size_t(i)] = p.vertex_root[size_t(f[0])];
   }
-  std::vector<float> len;
-  len.reserve(size_t(s.main_faces) * 3);
+  p.faces_of.assign(size_t(nv), 0);
+  for (int r : p.face_root)
+    if (r >= 0) ++p.faces_of[size_t(r)];
+  return p;
+}
+
+// The main part's edge lengths (each face's three; non-finite ones left out), their sum and the
+// part's bounding box, computed on every core in blocks of faces.
+struct EdgeLengths {
+  std::vector<float> length;
   double sum = 0;
   Eigen::AlignedBox3d box;
-  for (long long i = 0; i < nf; ++i) {
-    if (face_root[size_t(i)] < 0) continue;
-    if (face_root[size_t(i)] != main_root) {
-      if (double(faces_of[face_root[size_t(i)]]) < min_faces) ++s.debris_faces;
-      continue;
-    }
-    const auto& f = mesh.faces[size_t(i)];
-    for (int j = 0; j < 3; ++j) {
-      const Vec3& p = mesh.vertices[f[j]];
-      if (p.allFinite()) box.extend(p);
-      const double l = face_len[size_t(3 * i + j)];
-      if (std::isfinite(l)) len.push_back(float(l)), sum += l;
+};
+
+EdgeLengths main_part_edges(const TriMesh& mesh, const std::vector<int>& face_root, int main_root) {
+  constexpr long long kBlock = 1 << 16;
+  const long long nf = static_cast<long long>(mesh.faces.size());
+  const long long blocks = (nf + kBlock - 1) / kBlock;
+  EdgeLengths e;
+  sized(e.length, size_t(nf) * 3, std::numeric_limits<float>::quiet_NaN());
+  std::vector<double> block_sum(size_t(blocks), 0.0);
+  std::vector<Eigen::AlignedBox3d> block_box(static_cast<size_t>(blocks));
+#pragma omp parallel for schedule(static)
+  for (long long b = 0; b < blocks; ++b) {
+    for (long long i = b * kBlock; i < std::min(nf, (b + 1) * kBlock); ++i) {
+      if (face_root[size_t(i)] != main_root) continue;
+      const auto& f = mesh.faces[size_t(i)];
+      for (int j = 0; j < 3; ++j) {
+        const Vec3& p = mesh.vertices[f[j]];
+        if (p.allFinite()) block_box[size_t(b)].extend(p);
+        const double l = (p - mesh.vertices[f[(j + 1) % 3]]).norm();
+        if (!std::isfinite(l)) continue;
+        e.length[size_t(3 * i + j)] = float(l);
+        block_sum[size_t(b)] += l;
+      }
     }
   }
-  if (len.empty()) return s;
-  s.mean_edge = sum / double(len.size());
-  auto mid = len.begin() + len.size() / 2;
-  std::nth_element(len.begin(), mid, len.end());
+  for (long long b = 0; b < blocks; ++b) e.sum += block_sum[size_t(b)], e.box.extend(block_box[size_t(b)]);
+  e.length.erase(std::remove_if(e.length.begin(), e.length.end(), [](float l) { return std::isnan(l); }),
+                 e.length.end());
+  return e;
+}
+
+}  // namespace
+
+MeshScale mesh_scale(const TriMesh& mesh) {
+  count_work(Work::MeshScale);
+  MeshScale s;
+  const int nv = mesh.n_vertices();
+  const Parts parts = connected_parts(mesh);
+  int main_root = -1;
+  for (int v = 0; v < nv; ++v)
+    if (parts.faces_of[size_t(v)] > 0) {
+      ++s.parts;
+      if (main_root < 0 || parts.faces_of[size_t(v)] > parts.faces_of[size_t(main_root)]) main_root = v;
+    }
+  if (main_root < 0) return s;
+  s.main_faces = parts.faces_of[size_t(main_root)];
+  const double min_faces = kMainPartShare * double(s.main_faces);
+  s.counts.assign(size_t(nv), 0);
+  for (int v = 0; v < nv; ++v) s.counts[size_t(v)] = double(parts.faces_of[size_t(parts.vertex_root[size_t(v)])]) >= min_faces;
+  for (int r : parts.face_root)
+    if (r >= 0 && r != main_root && double(parts.faces_of[size_t(r)]) < min_faces) ++s.debris_faces;
+  EdgeLengths e = main_part_edges(mesh, parts.face_root, main_root);
+  if (e.length.empty()) return s;
+  s.mean_edge = e.sum / double(e.length.size());
+  auto mid = e.length.begin() + e.length.size() / 2;
+  __gnu_parallel::nth_element(e.length.begin(), mid, e.length.end());
   s.edge = *mid;
   if (!(s.edge > 0)) s.edge = s.mean_edge;  // more than half the edges of zero length
-  s.object_size = box.isEmpty() ? 0 : box.diagonal().norm();
+  s.object_size = e.box.isEmpty() ? 0 : e.box.diagonal().norm();
   return s;
 }
 

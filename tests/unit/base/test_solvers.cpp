@@ -169,11 +169,12 @@ TEST(BaseNormals, WideScaleIsSolvedByTheTwoLevelSolverAndAgreesWithCholesky) {
   Curvature c = compute_curvature(r.mesh);
   const double h = mesh_scale(r.mesh).edge;
   BaseNormalOptions o;
-  o.scale = 15 * h;  // the default: conjugate gradients
+  o.scale = 4 * h;  // a narrow step, predicted below the crossover: Jacobi conjugate gradients
   BaseNormals narrow = estimate_base_normals(r.mesh, c.normal, o);
+  EXPECT_LT(narrow.expected_iterations, kTwoLevelAboveIterations);
   EXPECT_EQ(narrow.solve.method, "conjugate gradients");
   EXPECT_TRUE(narrow.solve.converged);
-  o.scale = 100 * h;  // predicted well above the crossover: the two-level preconditioner
+  o.scale = 100 * h;  // predicted well above the crossovers: the two-level preconditioner
   BaseNormals wide = estimate_base_normals(r.mesh, c.normal, o);
   EXPECT_EQ(wide.solve.method, "conjugate gradients, two-level preconditioner");
   EXPECT_GT(wide.expected_iterations, 400);

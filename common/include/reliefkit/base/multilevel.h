@@ -37,20 +37,20 @@ class TwoLevelPreconditioner {
   ~TwoLevelPreconditioner();
   bool ok() const;
   int coarse_size() const;
-  /// Z = cycle(R), column by column.
-  void apply(const Eigen::MatrixXd& R, Eigen::MatrixXd& Z) const;
+  struct Parts;  // the matrix, smoother, aggregates and coarse factorization (multilevel.cpp)
+  const Parts& parts() const { return *parts_; }
 
  private:
-  struct Parts;
   std::unique_ptr<Parts> parts_;
 };
 
 /// Aggregates of the matrix graph: aggregate[i] for every row, numbered 0..count-1.
 std::vector<int> aggregate_vertices(const Eigen::SparseMatrix<double>& A, int& count);
 
-/// Preconditioned conjugate gradients on every column of B at once (X: initial guess in, solution
-/// out), until each column's relative residual is at most `tolerance` or `max_iterations`.
-/// Returns the iterations done.
+/// Preconditioned conjugate gradients on the columns of B, three at a time (X: initial guess in,
+/// solution out), until each column's relative residual is at most `tolerance` or
+/// `max_iterations`. `A` must be the preconditioner's matrix. Returns the most iterations a block
+/// needed.
 int preconditioned_cg(const Eigen::SparseMatrix<double>& A, const TwoLevelPreconditioner& preconditioner,
                       const Eigen::MatrixXd& B, Eigen::MatrixXd& X, double tolerance, int max_iterations);
 
