@@ -30,7 +30,7 @@
 namespace reliefkit {
 
 /// The two-grid cycle for one SPD matrix (both triangles stored). Building it fails (ok() false)
-/// when the coarse factorization does; apply() then must not be called.
+/// when the coarse factorization does; preconditioned_cg() then must not be given it.
 class TwoLevelPreconditioner {
  public:
   explicit TwoLevelPreconditioner(const Eigen::SparseMatrix<double>& A);
