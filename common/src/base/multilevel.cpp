@@ -174,18 +174,24 @@ std::array<double, K> column_dots(const Rows& a, const Rows& b) {
   return sum;
 }
 
-// Row i of R - A Z.
+// out += sign * (row i of A Z).
 template <int K>
-inline void residual_row(const Parts& p, int i, const double* R, const double* Z, double* out) {
+inline void add_product_row(const Parts& p, int i, const double* Z, double sign, double* out) {
   const int* ptr = p.A.outerIndexPtr();
   const int* idx = p.A.innerIndexPtr();
   const double* val = p.A.valuePtr();
-  for (int c = 0; c < K; ++c) out[c] = R[size_t(i) * K + c];
   for (int e = ptr[i]; e < ptr[i + 1]; ++e) {
-    const double a = val[e];
+    const double a = sign * val[e];
     const double* z = Z + size_t(idx[e]) * K;
-    for (int c = 0; c < K; ++c) out[c] -= a * z[c];
+    for (int c = 0; c < K; ++c) out[c] += a * z[c];
   }
+}
+
+// Row i of R - A Z.
+template <int K>
+inline void residual_row(const Parts& p, int i, const double* R, const double* Z, double* out) {
+  for (int c = 0; c < K; ++c) out[c] = R[size_t(i) * K + c];
+  add_product_row<K>(p, i, Z, -1.0, out);
 }
 
 // The symmetric two-grid cycle Z = cycle(R): damped Jacobi from zero, coarse correction (the
@@ -225,11 +231,9 @@ void multiply(const Parts& p, const Rows& D, Rows& Q) {
   const int n = int(p.aggregate.size());
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
-    const int* ptr = p.A.outerIndexPtr();
-    double s[K] = {};
-    for (int e = ptr[i]; e < ptr[i + 1]; ++e)
-      for (int c = 0; c < K; ++c) s[c] += p.A.valuePtr()[e] * D[size_t(p.A.innerIndexPtr()[e]) * K + c];
-    for (int c = 0; c < K; ++c) Q[size_t(i) * K + c] = s[c];
+    double* q = &Q[size_t(i) * K];
+    for (int c = 0; c < K; ++c) q[c] = 0;
+    add_product_row<K>(p, i, D.data(), 1.0, q);
   }
 }
 
@@ -284,9 +288,8 @@ int block_cg(const Parts& p, const Eigen::MatrixXd& B, Eigen::MatrixXd& X, int f
 
 }  // namespace
 
-int preconditioned_cg(const Eigen::SparseMatrix<double>& A, const TwoLevelPreconditioner& M, const Eigen::MatrixXd& B,
-                      Eigen::MatrixXd& X, double tolerance, int max_iterations) {
-  (void)A;  // the preconditioner holds the same matrix
+int preconditioned_cg(const TwoLevelPreconditioner& M, const Eigen::MatrixXd& B, Eigen::MatrixXd& X, double tolerance,
+                      int max_iterations) {
   const Parts& p = M.parts();
   int iterations = 0;
   for (int first = 0; first < B.cols();) {  // three columns at a time (the base normals' x, y, z)

@@ -112,7 +112,7 @@ bool two_level(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, E
       return false;
     }
     report_progress(o, 0.2, o.label);
-    rep.iterations = preconditioned_cg(A, cycle, B, X, o.tolerance, std::max(1, o.max_iterations));
+    rep.iterations = preconditioned_cg(cycle, B, X, o.tolerance, std::max(1, o.max_iterations));
     rep.residual = relative_residual(A, B, X);
     if (rep.residual <= o.tolerance) return true;
     char buf[160];

@@ -49,9 +49,9 @@ std::vector<int> aggregate_vertices(const Eigen::SparseMatrix<double>& A, int& c
 
 /// Preconditioned conjugate gradients on the columns of B, three at a time (X: initial guess in,
 /// solution out), until each column's relative residual is at most `tolerance` or
-/// `max_iterations`. `A` must be the preconditioner's matrix. Returns the most iterations a block
-/// needed.
-int preconditioned_cg(const Eigen::SparseMatrix<double>& A, const TwoLevelPreconditioner& preconditioner,
-                      const Eigen::MatrixXd& B, Eigen::MatrixXd& X, double tolerance, int max_iterations);
+/// `max_iterations`; the system's matrix is the preconditioner's. Returns the most iterations a
+/// block needed.
+int preconditioned_cg(const TwoLevelPreconditioner& preconditioner, const Eigen::MatrixXd& B, Eigen::MatrixXd& X,
+                      double tolerance, int max_iterations);
 
 }  // namespace reliefkit
