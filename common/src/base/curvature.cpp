@@ -370,9 +370,10 @@ static Curvature compute_curvature_jets(const TriMesh& mesh, const CurvatureOpti
   if (opt.derivatives) sized(out.dcurv, nv);
   std::vector<char> bad(nv, 0);
   report(opt.progress, 35, "Fitting local jets");
+  std::vector<std::vector<int>> marks = per_thread(size_t(nv), 0);
 #pragma omp parallel
   {
-    std::vector<int> nb, mark(nv, 0);
+    std::vector<int> nb, &mark = marks[size_t(omp_get_thread_num())];
     std::vector<double> buf;
     nb.reserve(64);
 #pragma omp for schedule(dynamic, 4096)

@@ -69,25 +69,47 @@ uint64_t position_hash(Vec3 p) {
   return h;
 }
 
-// For every vertex, the first input vertex at its exact position (itself if none; -1 if not finite).
-// Vertices are sorted by a 64-bit hash of their exact coordinates (computed in parallel; a direct
-// sort of integer pairs, not an indirect one on coordinates); equal hashes are then told apart by
-// their coordinates.
+// The hashes of vertices that share their hash with another vertex (sorted, each once). On a mesh
+// without coincident vertices this is empty, and the check costs one parallel sort of 64-bit keys.
+std::vector<uint64_t> shared_position_hashes(const std::vector<uint64_t>& hash) {
+  std::vector<uint64_t> sorted;
+  sized(sorted, hash.size());
+#pragma omp parallel for schedule(static)
+  for (size_t v = 0; v < hash.size(); ++v) sorted[v] = hash[v];
+  __gnu_parallel::sort(sorted.begin(), sorted.end());
+  std::vector<uint64_t> shared;
+  for (size_t i = 1; i < sorted.size(); ++i)
+    if (sorted[i] == sorted[i - 1] && (shared.empty() || shared.back() != sorted[i])) shared.push_back(sorted[i]);
+  return shared;
+}
+
+// For every vertex, the first input vertex at its exact position (itself if none; -1 if not
+// finite); empty when no two vertices share a position. Vertices are told apart by a 64-bit hash
+// of their exact coordinates (computed in parallel); only those whose hash another vertex shares
+// are compared by their coordinates.
 std::vector<int> first_at_same_position(const TriMesh& mesh, long long& welded) {
   const int nv = mesh.n_vertices();
-  std::vector<std::pair<uint64_t, int>> keyed;
-  sized(keyed, size_t(nv));
+  std::vector<uint64_t> hash;
+  sized(hash, size_t(nv));
 #pragma omp parallel for schedule(static)
-  for (int v = 0; v < nv; ++v) keyed[v] = {position_hash(mesh.vertices[v]), v};
-  // The pairs are distinct (one per vertex), so libstdc++'s parallel sort gives the one order a
-  // serial sort gives, on every core.
-  __gnu_parallel::sort(keyed.begin(), keyed.end());
+  for (int v = 0; v < nv; ++v) hash[v] = position_hash(mesh.vertices[v]);
+  const std::vector<uint64_t> shared = shared_position_hashes(hash);
+  if (shared.empty()) return {};
   std::vector<int> rep_of;
   sized(rep_of, size_t(nv), -1);
-  for (int i = 0; i < nv;) {
+  std::vector<std::pair<uint64_t, int>> keyed;  // the vertices of shared hashes, in input order per hash
+  for (int v = 0; v < nv; ++v) {
+    if (std::binary_search(shared.begin(), shared.end(), hash[v]))
+      keyed.emplace_back(hash[v], v);
+    else if (mesh.vertices[v].allFinite())
+      rep_of[v] = v;
+  }
+  std::sort(keyed.begin(), keyed.end());
+  const int nk = static_cast<int>(keyed.size());
+  for (int i = 0; i < nk;) {
     int j = i;
-    while (j < nv && keyed[j].first == keyed[i].first) ++j;
-    for (int k = i; k < j; ++k) {  // a run of equal hashes: almost always one vertex
+    while (j < nk && keyed[j].first == keyed[i].first) ++j;
+    for (int k = i; k < j; ++k) {  // a run of equal hashes
       const int v = keyed[k].second;
       if (!mesh.vertices[v].allFinite()) continue;
       for (int l = i; l < k; ++l) {
@@ -179,6 +201,7 @@ struct FaceNeighbours {
   std::vector<std::array<int, 3>> across;
   std::vector<std::array<char, 3>> same_direction;
   std::vector<char> closed;  // every edge of the face has exactly two faces
+  long long same_direction_pairs = 0;  // 0: every part is coherently oriented already
 };
 
 // The face across an edge is found among the faces of the edge's end of least valence; only a
@@ -189,7 +212,8 @@ FaceNeighbours face_neighbours(const TriMesh& mesh, const VertexFaces& vf) {
   sized(n.across, size_t(nf), std::array<int, 3>{-1, -1, -1});
   sized(n.same_direction, size_t(nf), std::array<char, 3>{0, 0, 0});
   sized(n.closed, size_t(nf), char(1));
-#pragma omp parallel for schedule(dynamic, 4096)
+  long long same_pairs = 0;
+#pragma omp parallel for schedule(dynamic, 4096) reduction(+ : same_pairs)
   for (int f = 0; f < nf; ++f) {
     const auto& t = mesh.faces[f];
     for (int j = 0; j < 3; ++j) {
@@ -213,11 +237,13 @@ FaceNeighbours face_neighbours(const TriMesh& mesh, const VertexFaces& vf) {
       if (count == 1) {
         n.across[f][j] = found;
         n.same_direction[f][j] = same;
+        same_pairs += same;
       } else {
         n.closed[f] = 0;
       }
     }
   }
+  n.same_direction_pairs = same_pairs;
   return n;
 }
 
@@ -257,9 +283,66 @@ double signed_volume_6(const TriMesh& mesh, const std::vector<int>& part, const 
   return vol;
 }
 
+// Each face's part over manifold edges, as an index 0, 1, ... in the order of the parts' first
+// faces (`count`: how many). A lock-free union-find on every core: a root is only ever linked under
+// a lower one, so each part's root is its lowest face whatever the threads' timing.
+std::vector<int> manifold_parts(const FaceNeighbours& n, int& count) {
+  const int nf = static_cast<int>(n.across.size());
+  std::vector<int> parent;
+  sized(parent, size_t(nf));
+  int* p = parent.data();
+  auto find = [p](int x) {
+    for (;;) {
+      const int up = __atomic_load_n(&p[x], __ATOMIC_RELAXED);
+      if (up == x) return x;
+      const int upup = __atomic_load_n(&p[up], __ATOMIC_RELAXED);
+      if (upup != up) __atomic_store_n(&p[x], upup, __ATOMIC_RELAXED);  // path halving: still an ancestor
+      x = upup;
+    }
+  };
+#pragma omp parallel for schedule(static)
+  for (int f = 0; f < nf; ++f) p[f] = f;
+#pragma omp parallel for schedule(dynamic, 4096)
+  for (int f = 0; f < nf; ++f)
+    for (int g : n.across[f]) {
+      if (g < 0) continue;
+      for (int a = find(f), b = find(g); a != b; a = find(a), b = find(b)) {
+        if (a < b) std::swap(a, b);
+        if (__atomic_compare_exchange_n(&p[a], &a, b, false, __ATOMIC_ACQ_REL, __ATOMIC_RELAXED)) break;
+      }
+    }
+  count = 0;
+  for (int f = 0; f < nf; ++f) p[f] = p[f] == f ? count++ : p[find(p[f])];  // roots come first
+  return parent;
+}
+
+// Orientation when no manifold edge is traversed twice in one direction: nothing to make coherent;
+// only a closed part with its normals inwards is turned (positive signed volume).
+std::vector<signed char> reverse_inward_closed_parts(TriMesh& mesh, const FaceNeighbours& n, RepairReport& rep) {
+  const int nf = mesh.n_faces();
+  int parts = 0;
+  const std::vector<int> part = manifold_parts(n, parts);
+  std::vector<char> closed(size_t(parts), 1);
+  std::vector<double> volume_6(size_t(parts), 0.0);
+  for (int f = 0; f < nf; ++f) closed[part[f]] &= n.closed[f];
+  for (int f = 0; f < nf; ++f) {
+    if (!closed[part[f]]) continue;
+    const auto& t = mesh.faces[f];
+    volume_6[part[f]] += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+  }
+  std::vector<signed char> flip;
+  sized(flip, size_t(nf), static_cast<signed char>(0));
+  for (int q = 0; q < parts; ++q) rep.reversed_parts += closed[q] && volume_6[q] < 0;
+  if (rep.reversed_parts == 0) return flip;
+  for (int f = 0; f < nf; ++f)
+    if (closed[part[f]] && volume_6[part[f]] < 0) flip[f] = 1, std::swap(mesh.faces[f][1], mesh.faces[f][2]);
+  return flip;
+}
+
 // 3. Coherent orientation per part, the majority's; a closed part's normals outwards (positive
 // signed volume). Returns each face's flip (1: turned).
 std::vector<signed char> orient_parts(TriMesh& mesh, const FaceNeighbours& n, RepairReport& rep) {
+  if (n.same_direction_pairs == 0) return reverse_inward_closed_parts(mesh, n, rep);
   const int nf = mesh.n_faces();
   std::vector<signed char> flip;
   sized(flip, size_t(nf), static_cast<signed char>(-1));

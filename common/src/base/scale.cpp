@@ -210,9 +210,10 @@ NoiseEstimate estimate_noise(const TriMesh& mesh, const MeshScale& scale, int ma
   for (size_t i = 0; i < candidates.size(); i += stride) sample.push_back(candidates[i]);
   const int ns = static_cast<int>(sample.size());
   std::vector<double> sd(ns, -1);
+  std::vector<std::vector<int>> marks = per_thread(size_t(nv), -1);
 #pragma omp parallel
   {
-    std::vector<int> ring, mark(nv, -1);
+    std::vector<int> ring, &mark = marks[size_t(omp_get_thread_num())];
 #pragma omp for schedule(dynamic, 1024)
     for (int i = 0; i < ns; ++i) {
       const int v = sample[i];

@@ -340,9 +340,10 @@ std::vector<Vec3> bilateral_pass(const TriMesh& mesh, const MeshTopology& topolo
   const std::vector<Vec3> raw = vertex_normals(current, topology.faces);
   const double sc2 = 2 * sigma_c * sigma_c, ss2 = 2 * 0.25 * sigma_c * sigma_c, sr2 = 2 * 0.16 * sigma_c * sigma_c;
   std::vector<Vec3> out(positions);
+  std::vector<std::vector<int>> marks = per_thread(size_t(nv), -1);
 #pragma omp parallel
   {
-    std::vector<int> mark(nv, -1), queue;
+    std::vector<int> queue, &mark = marks[size_t(omp_get_thread_num())];
 #pragma omp for schedule(dynamic, 1024)
     for (int v = 0; v < nv; ++v) {
       const Vec3& pv = positions[v];
@@ -403,9 +404,10 @@ FlowState flow_start(const Surface& surface, const EnhanceResult& out) {
   const int nv = surface.n_vertices();
   FlowState s;
   s.lo.assign(nv, 0), s.hi.assign(nv, 0);
+  std::vector<std::vector<int>> marks = per_thread(size_t(nv), -1);
 #pragma omp parallel
   {
-    std::vector<int> mark(nv, -1), queue;
+    std::vector<int> queue, &mark = marks[size_t(omp_get_thread_num())];
 #pragma omp for schedule(dynamic, 1024)
     for (int v = 0; v < nv; ++v)
       for_each_near(topo.ring, pos, v, out.extremum_radius, mark, v, queue, [&](int j, double) {
