@@ -2,6 +2,7 @@
 // with a known step, must give the same curves as the undamaged mesh (or be refused).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "reliefkit/demarcating/demarcating.h"
@@ -105,6 +106,39 @@ TEST(Repair, NonOrientablePartIsLeftAsItWasAndSaid) {
   EXPECT_EQ(r.report.flipped_faces, 0);
   EXPECT_EQ(r.mesh.faces, m.faces);
   EXPECT_NE(r.report.summary().find("cannot be oriented coherently"), std::string::npos);
+}
+
+TEST(Repair, OnlyAClosedPartInsideOutIsTurned) {
+  // Three parts, their faces interleaved: a tetrahedron inside out, one the right way out, and an
+  // open square. Every edge is traversed both ways, so no face needs turning to agree with its
+  // neighbours: only the closed part with negative volume is turned, all of it.
+  TriMesh m;
+  auto tetrahedron = [&](Vec3 at, bool inward) {
+    const int b = m.n_vertices();
+    for (Vec3 p : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)}) m.vertices.push_back(at + p);
+    std::vector<std::array<int, 3>> f = {{b, b + 2, b + 1}, {b, b + 1, b + 3}, {b, b + 3, b + 2}, {b + 1, b + 2, b + 3}};
+    if (inward)
+      for (auto& t : f) std::swap(t[1], t[2]);
+    return f;
+  };
+  const auto in = tetrahedron(Vec3(0, 0, 0), true), out = tetrahedron(Vec3(3, 0, 0), false);
+  const int s = m.n_vertices();
+  for (Vec3 p : {Vec3(0, 3, 0), Vec3(1, 3, 0), Vec3(1, 4, 0), Vec3(0, 4, 0)}) m.vertices.push_back(p);
+  const std::vector<std::array<int, 3>> square = {{s, s + 1, s + 2}, {s, s + 2, s + 3}};
+  for (int i = 0; i < 4; ++i) {
+    m.faces.push_back(out[i]);
+    if (i < 2) m.faces.push_back(square[i]);
+    m.faces.push_back(in[i]);
+  }
+  RepairedMesh r = repair_for_computation(m);
+  EXPECT_EQ(r.report.reversed_parts, 1);
+  EXPECT_EQ(r.report.flipped_faces, 0);
+  for (size_t f = 0; f < m.faces.size(); ++f) {
+    const bool of_inward = std::find(in.begin(), in.end(), m.faces[f]) != in.end();
+    auto want = m.faces[f];
+    if (of_inward) std::swap(want[1], want[2]);
+    EXPECT_EQ(r.mesh.faces[f], want) << "face " << f;
+  }
 }
 
 TEST(Repair, FuzzerFindingsAreRefusedWithAMessage) {
