@@ -60,7 +60,7 @@ struct TwoLevelPreconditioner::Parts {
   int coarse_size = 0;
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> coarse;
   bool ok = false;
-  explicit Parts(const Eigen::SparseMatrix<double>& a) : A(row_major(a)) {}
+  explicit Parts(const Eigen::SparseMatrix<double>& a) : A(row_major(a)) { use_one_blas_thread(); }
 };
 
 namespace {

@@ -1,5 +1,7 @@
 #include "reliefkit/base/solvers.h"
 
+#include <dlfcn.h>
+
 #include <Eigen/CholmodSupport>
 #include <Eigen/IterativeLinearSolvers>
 #include <algorithm>
@@ -203,6 +205,22 @@ SolveReport solve_spd(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixX
   return rep;
 }
 
+void use_one_blas_thread() {
+  static const bool done = [] {
+    // The BLAS is found among the libraries already loaded, whatever scope its loader gave them
+    // (MeshLab loads plugins with their own).
+    for (const char* name : {"libblas.so.3", "libopenblas.so.0"}) {
+      void* lib = dlopen(name, RTLD_LAZY | RTLD_NOLOAD);
+      if (!lib) continue;
+      using SetThreads = void (*)(int);
+      if (auto set = reinterpret_cast<SetThreads>(dlsym(lib, "openblas_set_num_threads"))) set(1);
+      dlclose(lib);
+    }
+    return true;
+  }();
+  (void)done;
+}
+
 struct SpdFactorization::Impl {
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
   Eigen::SparseMatrix<double> factored;  // the matrix of the current factorization (compressed)
@@ -211,6 +229,7 @@ struct SpdFactorization::Impl {
 };
 
 SpdFactorization::SpdFactorization(Ordering ordering) : impl_(std::make_unique<Impl>()) {
+  use_one_blas_thread();
   impl_->llt.cholmod().print = 0;  // CHOLMOD writes nothing to stdout; failures come back as info()
   // AMD alone: CHOLMOD's default also tries METIS when AMD's fill is high, and on a 4 M-face mesh
   // its nested dissection took 15 s to save little fill (33 s in all against 17 s with AMD).

@@ -333,22 +333,83 @@ double outline_diagonal(const Outline& a) {
   return (hi - lo).norm();
 }
 
+namespace {
+
+// Q's points bucketed in a uniform grid (about two per cell), for exact nearest-point searches.
+struct PointGrid {
+  const std::vector<Vec2>& points;
+  Vec2 origin;
+  double cell = 1;
+  int nx = 1, ny = 1;
+  std::vector<int> start, order;  // the points of cell c: order[start[c] .. start[c + 1])
+
+  explicit PointGrid(const std::vector<Vec2>& q) : points(q) {
+    Vec2 lo = q[0], hi = q[0];
+    for (const auto& p : q) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    const Vec2 size = (hi - lo).cwiseMax(Vec2(1e-12, 1e-12));
+    cell = std::max(std::sqrt(2 * size.x() * size.y() / double(q.size())), std::max(size.x(), size.y()) / 4096);
+    origin = lo;
+    nx = int(size.x() / cell) + 1, ny = int(size.y() / cell) + 1;
+    start.assign(size_t(nx) * size_t(ny) + 1, 0);
+    for (const auto& p : q) ++start[size_t(cell_of(p)) + 1];
+    for (size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+    order.resize(q.size());
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int i = 0; i < int(q.size()); ++i) order[size_t(fill[size_t(cell_of(q[size_t(i)]))]++)] = i;
+  }
+  // A cell index, possibly outside the grid (bounded: far points only need the grid's side).
+  int index(double t) const { return int(std::floor(std::clamp(t / cell, -double(1 << 24), double(1 << 24)))); }
+  int column(double x) const { return index(x - origin.x()); }
+  int row(double y) const { return index(y - origin.y()); }
+  int cell_of(const Vec2& p) const {
+    return std::clamp(row(p.y()), 0, ny - 1) * nx + std::clamp(column(p.x()), 0, nx - 1);
+  }
+
+  // Squared distance from p to the nearest point: rings of cells around p's cell, outwards, until
+  // no cell farther out can hold a nearer point.
+  double nearest_squared(const Vec2& p) const {
+    const int cx = column(p.x()), cy = row(p.y());
+    const int outside = std::max({0, -cx, cx - (nx - 1), -cy, cy - (ny - 1)});
+    const int last = std::max({cx, nx - 1 - cx, cy, ny - 1 - cy});
+    double best = std::numeric_limits<double>::infinity();
+    auto visit = [&](int x, int y) {
+      if (x < 0 || y < 0 || x >= nx || y >= ny) return;
+      const size_t c = size_t(y) * size_t(nx) + size_t(x);
+      for (int k = start[c]; k < start[c + 1]; ++k)
+        best = std::min(best, (points[size_t(order[size_t(k)])] - p).squaredNorm());
+    };
+    for (int r = outside; r <= last; ++r) {
+      for (int x = std::max(0, cx - r); x <= std::min(nx - 1, cx + r); ++x) {  // the ring's top and bottom rows
+        visit(x, cy - r);
+        if (r > 0) visit(x, cy + r);
+      }
+      for (int y = std::max(0, cy - r + 1); y <= std::min(ny - 1, cy + r - 1); ++y)  // its sides
+        visit(cx - r, y), visit(cx + r, y);
+      const double reach = r * cell;  // every cell beyond ring r is at least this far from p
+      if (best <= reach * reach) break;
+    }
+    return best;
+  }
+};
+
+// The largest distance from a point of P to its nearest point of Q.
+double directed_hausdorff(const std::vector<Vec2>& P, const std::vector<Vec2>& Q) {
+  const PointGrid grid(Q);
+  double worst = 0;
+#pragma omp parallel for reduction(max : worst) schedule(static)
+  for (long i = 0; i < long(P.size()); ++i) worst = std::max(worst, grid.nearest_squared(P[size_t(i)]));
+  return std::sqrt(worst);
+}
+
+}  // namespace
+
 double outline_hausdorff(const Outline& a, const Outline& b) {
   if (a.empty() || b.empty()) return std::numeric_limits<double>::infinity();
   const double step = std::max(outline_diagonal(a), outline_diagonal(b)) / 1500;
   const auto A = densify(a, step), B = densify(b, step);
-  auto one_way = [](const std::vector<Vec2>& P, const std::vector<Vec2>& Q) {
-    double worst = 0;
-#pragma omp parallel for reduction(max : worst) schedule(static)
-    for (long i = 0; i < long(P.size()); ++i) {
-      double best = 1e300;
-      for (const auto& q : Q) best = std::min(best, (P[size_t(i)] - q).squaredNorm());
-      worst = std::max(worst, best);
-    }
-    return std::sqrt(worst);
-  };
-  return std::max(one_way(A, B), one_way(B, A));
+  return std::max(directed_hausdorff(A, B), directed_hausdorff(B, A));
 }
+
 void sort_reading_order(std::vector<DrawingOutline>& outlines) {
   std::sort(outlines.begin(), outlines.end(), [](const DrawingOutline& a, const DrawingOutline& b) {
     const int overlap = std::min(a.box.y + a.box.height, b.box.y + b.box.height) - std::max(a.box.y, b.box.y);

@@ -111,6 +111,19 @@ TEST(BaseLibrary, OrientationsKeepFacesOutwards) {
   EXPECT_EQ(mirrors, 24);
 }
 
+TEST(BaseLibrary, HausdorffDistanceOfKnownOutlines) {
+  // Squares of side 1: one shifted by 0.3, one far away (100.3); a square of side 3 around one of
+  // side 1 in its middle: the big one's corners are sqrt 2 from the small one's (and no point of
+  // the small one is farther than 1 from the big one).
+  auto square = [](double x, double y, double side) {
+    return Outline{Vec2(x, y), Vec2(x + side, y), Vec2(x + side, y + side), Vec2(x, y + side)};
+  };
+  EXPECT_NEAR(outline_hausdorff(square(0, 0, 1), square(0.3, 0, 1)), 0.3, 1e-5);
+  EXPECT_NEAR(outline_hausdorff(square(0, 0, 1), square(100.3, 0, 1)), 100.3, 1e-5);
+  EXPECT_NEAR(outline_hausdorff(square(0, 0, 3), square(1, 1, 1)), std::sqrt(2.0), 1e-5);
+  EXPECT_NEAR(outline_hausdorff(square(1, 1, 1), square(0, 0, 3)), std::sqrt(2.0), 1e-5);
+}
+
 TEST(BaseLibrary, OutlineOfADrawnFigure) {
   // An ellipse drawn with two breaks in its line, hatching inside, a caption and paper noise.
   Outline ellipse;

@@ -79,6 +79,14 @@ constexpr double kTwoLevelAboveIterations = 60;
 /// Largest system Auto hands to the direct solver (unknowns); larger ones stay iterative.
 constexpr int kDirectMaxUnknowns = 2500000;
 
+/// Before CHOLMOD first factorizes: where the BLAS it calls is OpenBLAS (Debian's default), it is
+/// set to one thread for the process. OpenBLAS's own threads wait for work spinning on
+/// sched_yield and take the cores from the OpenMP loops around the solves:
+/// `time build/tests/reliefkit_unit_tests --gtest_filter=BaseLibrary.DeformationFitsTheOutline`
+/// 7.3 s (13.6 s of CPU) with them, 5.2 s (7.4 s) with OPENBLAS_NUM_THREADS=1; Relief Edges on a
+/// 1 M-face relief no slower (2.0-2.6 s against 1.9-2.1 s).
+void use_one_blas_thread();
+
 /// A Cholesky factorization (CHOLMOD) kept across the solves of systems that share one sparsity
 /// pattern: the fill-reducing ordering is computed for the first matrix and the numeric
 /// factorization again only when the values change, so a repeated matrix costs its solve alone.
