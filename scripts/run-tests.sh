@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # All tests, from a fresh machine: set-up, Release build with the MeshLab plugins, unit and
-# integration tests (the real meshlabserver on one virtual X display), a bounded libFuzzer run over
-# the cores (clang, AddressSanitizer + UndefinedBehaviorSanitizer + coverage) beside the build of the unit tests
-# with AddressSanitizer + UndefinedBehaviorSanitizer alone, then those tests (libFuzzer's comparison tracing
-# made them up to 60x slower: ScaleSpace.GaussianBump 424 s instead of 7 s). Compiles through ccache
-# (scripts/setup.sh installs it; CMakeLists.txt sets it up so that a clone in another folder hits the
-# same cache). Prints the time of each stage at the end.
+# integration tests (the real meshlabserver on one virtual X display), then the build of the unit
+# tests with AddressSanitizer + UndefinedBehaviorSanitizer and those tests, beside a bounded
+# libFuzzer run over the cores (its own clang build with the sanitizers and coverage; libFuzzer's
+# comparison tracing made the unit tests up to 60x slower, so they are not run in that build).
+# Compiles through ccache (scripts/setup.sh installs it; CMakeLists.txt sets it up so that a clone
+# in another folder hits the same cache). Prints the time of each stage at the end.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 jobs="$(nproc)"
@@ -41,6 +41,8 @@ build_fuzzer() {
 }
 stage "fuzzer build (clang, ASan + UBSan + libFuzzer coverage)" build_fuzzer
 
+# A fixed number of fuzzer runs (about what one core does in a minute), not a fixed time: it runs
+# beside the sanitizer tests, and its strength must not depend on how busy the machine is.
 fuzz_cores() {
   local work
   export OMP_NUM_THREADS=1  # one input at a time; threads only slow the sanitizers down
@@ -49,8 +51,8 @@ fuzz_cores() {
   work="$(mktemp -d)"
   cp "$here"/tests/fuzz/corpus/* "$work"/
   rm -f "$fuzz"/crash-* "$fuzz"/leak-* "$fuzz"/timeout-* "$fuzz"/oom-*
-  "$fuzz/tests/fuzz/fuzz_cores" -max_total_time="${RELIEFKIT_FUZZ_SECONDS:-60}" -rss_limit_mb=4096 -max_len=2048 \
-    -print_final_stats=1 -artifact_prefix="$fuzz/" "$work" 2>&1 |
+  "$fuzz/tests/fuzz/fuzz_cores" -runs="${RELIEFKIT_FUZZ_RUNS:-2000}" -max_total_time=600 -rss_limit_mb=4096 \
+    -max_len=2048 -print_final_stats=1 -artifact_prefix="$fuzz/" "$work" 2>&1 |
     grep -E "DONE|^Done|stat::number_of_executed_units|ERROR|SUMMARY|Test unit written" || true
   rm -rf "$work"
   unset OMP_NUM_THREADS
@@ -63,19 +65,20 @@ build_sanitized_tests() {
     -DRELIEFKIT_PLUGINS=OFF -DRELIEFKIT_BENCHMARKS=OFF >/dev/null
   cmake --build "$asan" -j"$jobs" --target reliefkit_unit_tests
 }
-# The fuzzer runs on one core (one input at a time): the sanitizer build takes what is left, side
-# by side, and the stage ends when both have.
-fuzz_beside_sanitizer_build() {
-  local log="$fuzz/fuzzing.log" fuzzing
+stage "sanitizer build of the unit tests (ASan + UBSan)" build_sanitized_tests
+seed_test_costs "$asan" "$here/tests/costs/sanitized.txt"
+# The fuzzer (one process) runs beside the sanitizer tests (two at a time): the cores stay busy to
+# the end instead of one waiting for the other's last long test.
+sanitized_tests_beside_fuzzing() {
+  local log="$fuzz/fuzzing.log" fuzzing status=0
   fuzz_cores >"$log" 2>&1 &
   fuzzing=$!
-  build_sanitized_tests
-  if ! wait "$fuzzing"; then cat "$log"; return 1; fi
-  cat "$log"
-}
-stage "fuzzing the cores (regressions, then ${RELIEFKIT_FUZZ_SECONDS:-60} s) beside the sanitizer build of the unit tests" \
-  fuzz_beside_sanitizer_build
-seed_test_costs "$asan" "$here/tests/costs/sanitized.txt"
-stage "unit tests with AddressSanitizer + UndefinedBehaviorSanitizer" \
   env ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir "$asan" --output-on-failure -L unit -j"$jobs"
+    ctest --test-dir "$asan" --output-on-failure -L unit -j"$jobs" || status=$?
+  wait "$fuzzing" || status=$?
+  echo "-- fuzzing the cores (regressions, then ${RELIEFKIT_FUZZ_RUNS:-2000} runs):"
+  cat "$log"
+  return "$status"
+}
+stage "unit tests with AddressSanitizer + UndefinedBehaviorSanitizer, beside fuzzing the cores" \
+  sanitized_tests_beside_fuzzing
