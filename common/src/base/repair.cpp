@@ -1,4 +1,5 @@
 #include "reliefkit/base/repair.h"
+#include "reliefkit/base/disjoint_sets.h"
 #include "reliefkit/base/memory.h"
 #include "reliefkit/base/work_counts.h"
 
@@ -273,47 +274,28 @@ bool spread_orientation(int seed, const FaceNeighbours& n, std::vector<signed ch
   return !conflict;
 }
 
+// Six times the signed volume of the tetrahedron of face f and the origin.
+double face_volume_6(const TriMesh& mesh, int f) {
+  const auto& t = mesh.faces[f];
+  return mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+}
+
 double signed_volume_6(const TriMesh& mesh, const std::vector<int>& part, const std::vector<signed char>& flip) {
   double vol = 0;
-  for (int f : part) {
-    const auto& t = mesh.faces[f];
-    const double v6 = mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
-    vol += flip[f] ? -v6 : v6;
-  }
+  for (int f : part) vol += flip[f] ? -face_volume_6(mesh, f) : face_volume_6(mesh, f);
   return vol;
 }
 
 // Each face's part over manifold edges, as an index 0, 1, ... in the order of the parts' first
-// faces (`count`: how many). A lock-free union-find on every core: a root is only ever linked under
-// a lower one, so each part's root is its lowest face whatever the threads' timing.
+// faces (`count`: how many), found on every core.
 std::vector<int> manifold_parts(const FaceNeighbours& n, int& count) {
   const int nf = static_cast<int>(n.across.size());
-  std::vector<int> parent;
-  sized(parent, size_t(nf));
-  int* p = parent.data();
-  auto find = [p](int x) {
-    for (;;) {
-      const int up = __atomic_load_n(&p[x], __ATOMIC_RELAXED);
-      if (up == x) return x;
-      const int upup = __atomic_load_n(&p[up], __ATOMIC_RELAXED);
-      if (upup != up) __atomic_store_n(&p[x], upup, __ATOMIC_RELAXED);  // path halving: still an ancestor
-      x = upup;
-    }
-  };
-#pragma omp parallel for schedule(static)
-  for (int f = 0; f < nf; ++f) p[f] = f;
+  DisjointSets sets(nf);
 #pragma omp parallel for schedule(dynamic, 4096)
   for (int f = 0; f < nf; ++f)
-    for (int g : n.across[f]) {
-      if (g < 0) continue;
-      for (int a = find(f), b = find(g); a != b; a = find(a), b = find(b)) {
-        if (a < b) std::swap(a, b);
-        if (__atomic_compare_exchange_n(&p[a], &a, b, false, __ATOMIC_ACQ_REL, __ATOMIC_RELAXED)) break;
-      }
-    }
-  count = 0;
-  for (int f = 0; f < nf; ++f) p[f] = p[f] == f ? count++ : p[find(p[f])];  // roots come first
-  return parent;
+    for (int g : n.across[f])
+      if (g >= 0) sets.unite(f, g);
+  return std::move(sets).numbered(count);
 }
 
 // Orientation when no manifold edge is traversed twice in one direction: nothing to make coherent;
@@ -325,11 +307,8 @@ std::vector<signed char> reverse_inward_closed_parts(TriMesh& mesh, const FaceNe
   std::vector<char> closed(size_t(parts), 1);
   std::vector<double> volume_6(size_t(parts), 0.0);
   for (int f = 0; f < nf; ++f) closed[part[f]] &= n.closed[f];
-  for (int f = 0; f < nf; ++f) {
-    if (!closed[part[f]]) continue;
-    const auto& t = mesh.faces[f];
-    volume_6[part[f]] += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
-  }
+  for (int f = 0; f < nf; ++f)
+    if (closed[part[f]]) volume_6[part[f]] += face_volume_6(mesh, f);
   std::vector<signed char> flip;
   sized(flip, size_t(nf), static_cast<signed char>(0));
   for (int q = 0; q < parts; ++q) rep.reversed_parts += closed[q] && volume_6[q] < 0;
