@@ -37,7 +37,7 @@ void compare_solvers(const TriMesh& m, const std::vector<double>& scales_in_edge
     const BaseNormals exact = estimate_base_normals(m, n, o);
     const std::pair<const char*, SolverMethod> solvers[] = {
         {"auto", SolverMethod::Auto}, {"CG", SolverMethod::Iterative}, {"Cholesky", SolverMethod::Direct},
-        {"two-level", SolverMethod::TwoLevel}};
+        {"multilevel", SolverMethod::Multilevel}};
     for (const auto& [name, method] : solvers) {
       o.method = method;
       double best = 1e30, peak = 0;

@@ -15,7 +15,10 @@ ratios:   the three curve filters most used (curvature, Demarcating Curves, Reli
           the same process, twice, on a clean 1 M-face relief torus and on the shared real scans
           (../shared/data/meshes, converted to PLY).
 
-Usage: bench/compare_meshlab.py [accuracy] [speed] [demarcating] [ratios] [--sizes 100000,1000000,4000000]
+first-call: the curve filters in two orders in one process (is the first ReliefKit filter of a
+          process slower, and which one pays).
+
+Usage: bench/compare_meshlab.py [accuracy] [speed] [demarcating] [ratios] [first-call] [--sizes 100000,1000000,4000000]
 Needs a build (scripts/build.sh). Runs its own Xvfb.
 """
 import argparse
@@ -267,6 +270,24 @@ def ratios(display, tmp, repeats=2):
             print(f"{label:24s} {faces:9d} {pqf:7.3f}  {cells}", flush=True)
 
 
+def first_call(display, tmp, repeats=2):
+    """Each curve filter first and again later in one process: the first ReliefKit filter of a
+    process pays for memory new to the process (see docs/benchmarks.md)."""
+    curvature = example_filter("curvature.mlx", OURS)
+    dem = example_filter("demarcating_shading.mlx", "Demarcating Curves")
+    edges = example_filter("relief_edges.mlx", "Relief Edges")
+    mesh = os.path.join(tmp, "relief1000000.ply")
+    subprocess.run([MAKE, "relief-torus", "1000000", mesh], check=True, capture_output=True)
+    orders = {"curvature first": [meshlab(3, 0), curvature, dem, edges, curvature, meshlab(3, 0)],
+              "demarcating first": [meshlab(3, 0), dem, curvature, edges, dem, meshlab(3, 0)]}
+    print("Filter times in seconds, in the order run, one process per line (1 M-face relief torus)")
+    for label, filters in orders.items():
+        for _ in range(repeats):
+            phases, _ = run(display, mesh, filters, timed=True)
+            print(f"{label:18s} " + "  ".join(f"{name[:20]:>20s} {secs:5.2f}" for name, secs, _ in phases[1:]),
+                  flush=True)
+
+
 def count_faces(ply):
     with open(ply, "rb") as f:
         for line in f:
@@ -292,6 +313,8 @@ def main():
                 accuracy(display, tmp)
             if "ratios" in a.what:
                 ratios(display, tmp)
+            if "first-call" in a.what:
+                first_call(display, tmp)
             if "speed" in a.what:
                 speed(display, tmp, [int(s) for s in a.sizes.split(",")])
             if "demarcating" in a.what:

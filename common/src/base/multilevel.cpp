@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <deque>
 #include <vector>
 
 #include "reliefkit/base/solvers.h"
@@ -15,6 +16,7 @@ namespace {
 // Damping of the Jacobi steps, smoother and prolongation alike: 4 / (3 ρ(D⁻¹A)) with ρ ≤ 2 for the
 // diagonally dominant M-matrices this is for (negative weights clamped) — the textbook 2/3.
 constexpr double kJacobiDamping = 2.0 / 3.0;
+
 
 template <typename Visit>
 void for_each_neighbour(const Eigen::SparseMatrix<double>& A, int i, Visit visit) {
@@ -52,30 +54,53 @@ std::vector<int> aggregate_vertices(const Eigen::SparseMatrix<double>& A, int& c
   return aggregate;
 }
 
-struct TwoLevelPreconditioner::Parts {
-  Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor>> A;
+// One level of the hierarchy: its operator (both triangles; symmetric, so its columns are its
+// rows), the smoother, and the aggregates that make the next level.
+struct AggregationLevel {
+  int n = 0;
+  const int* ptr = nullptr;  // the operator's rows
+  const int* idx = nullptr;
+  const double* val = nullptr;
+  Eigen::SparseMatrix<double> owned;            // a coarse level's operator (the finest is the caller's)
   std::vector<double> damped_inverse_diagonal;  // ω / A_ii
   std::vector<int> aggregate;                   // the prolongation: a coarse value is copied to its aggregate
   std::vector<int> member_offset, member;       // the rows of each aggregate (the restriction's sums)
   int coarse_size = 0;
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> coarse;
+  void view(const Eigen::SparseMatrix<double>& a) {
+    n = int(a.rows()), ptr = a.outerIndexPtr(), idx = a.innerIndexPtr(), val = a.valuePtr();
+  }
+};
+
+struct MultilevelPreconditioner::Parts {
+  std::deque<AggregationLevel> levels;  // finest first; the last one's aggregates form the factorized system
+  Eigen::CholmodSimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower> coarse;
   bool ok = false;
-  explicit Parts(const Eigen::SparseMatrix<double>& a) : A(row_major(a)) { use_one_blas_thread(); }
+  Parts() { use_one_blas_thread(); }
 };
 
 namespace {
 
-using Parts = TwoLevelPreconditioner::Parts;
+using Parts = MultilevelPreconditioner::Parts;
 
 // The rows of each aggregate, as offsets into one list.
-void list_members(Parts& p) {
-  const int n = int(p.aggregate.size());
-  p.member_offset.assign(size_t(p.coarse_size) + 1, 0);
-  for (int a : p.aggregate) ++p.member_offset[size_t(a) + 1];
-  for (int c = 0; c < p.coarse_size; ++c) p.member_offset[size_t(c) + 1] += p.member_offset[size_t(c)];
-  p.member.resize(size_t(n));
-  std::vector<int> next(p.member_offset.begin(), p.member_offset.end() - 1);
-  for (int i = 0; i < n; ++i) p.member[size_t(next[size_t(p.aggregate[size_t(i)])]++)] = i;
+void list_members(AggregationLevel& l) {
+  l.member_offset.assign(size_t(l.coarse_size) + 1, 0);
+  for (int a : l.aggregate) ++l.member_offset[size_t(a) + 1];
+  for (int c = 0; c < l.coarse_size; ++c) l.member_offset[size_t(c) + 1] += l.member_offset[size_t(c)];
+  l.member.resize(size_t(l.n));
+  std::vector<int> next(l.member_offset.begin(), l.member_offset.end() - 1);
+  for (int i = 0; i < l.n; ++i) l.member[size_t(next[size_t(l.aggregate[size_t(i)])]++)] = i;
+}
+
+void damp_diagonal(AggregationLevel& l) {
+  l.damped_inverse_diagonal.resize(size_t(l.n));
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < l.n; ++i) {
+    const int *first = l.idx + l.ptr[i], *last = l.idx + l.ptr[i + 1];
+    const int* at = std::lower_bound(first, last, i);
+    const double d = (at != last && *at == i) ? l.val[at - l.idx] : 0.0;
+    l.damped_inverse_diagonal[size_t(i)] = d > 0 ? kJacobiDamping / d : 0;
+  }
 }
 
 // Sorts the entries of one column (from `first` to the end) by row.
@@ -86,28 +111,25 @@ void sort_column(std::vector<int>& inner, std::vector<double>& value, size_t fir
   for (size_t k = first; k < inner.size(); ++k) inner[k] = column[k - first].first, value[k] = column[k - first].second;
 }
 
-// Galerkin coarse operator Pᵀ A P, lower triangle: the couplings summed aggregate by aggregate,
-// assembled column by column (no triplet sort).
-Eigen::SparseMatrix<double> coarse_operator(const Parts& p) {
-  const int nc = p.coarse_size;
-  const int* ptr = p.A.outerIndexPtr();
-  const int* idx = p.A.innerIndexPtr();
-  const double* val = p.A.valuePtr();
+// Galerkin coarse operator Pᵀ A P, both triangles, rows of each column in order (as CHOLMOD and
+// the next level's aggregation want them): the couplings summed aggregate by aggregate, assembled
+// column by column (no triplet sort).
+Eigen::SparseMatrix<double> coarse_operator(const AggregationLevel& l) {
+  const int nc = l.coarse_size;
   std::vector<int> slot(size_t(nc), -1), outer(size_t(nc) + 1, 0), inner;
   std::vector<double> value;
-  inner.reserve(size_t(p.A.nonZeros()) / 4);
-  value.reserve(size_t(p.A.nonZeros()) / 4);
+  inner.reserve(size_t(l.ptr[l.n]) / 2);
+  value.reserve(size_t(l.ptr[l.n]) / 2);
   for (int c = 0; c < nc; ++c) {
     const size_t first = inner.size();
-    for (int m = p.member_offset[size_t(c)]; m < p.member_offset[size_t(c) + 1]; ++m)
-      for (int e = ptr[p.member[size_t(m)]]; e < ptr[p.member[size_t(m)] + 1]; ++e) {
-        const int r = p.aggregate[size_t(idx[e])];
-        if (r < c) continue;
+    for (int m = l.member_offset[size_t(c)]; m < l.member_offset[size_t(c) + 1]; ++m)
+      for (int e = l.ptr[l.member[size_t(m)]]; e < l.ptr[l.member[size_t(m)] + 1]; ++e) {
+        const int r = l.aggregate[size_t(l.idx[e])];
         if (slot[size_t(r)] < int(first)) slot[size_t(r)] = int(inner.size()), inner.push_back(r), value.push_back(0);
-        value[size_t(slot[size_t(r)])] += val[e];
+        value[size_t(slot[size_t(r)])] += l.val[e];
       }
     outer[size_t(c) + 1] = int(inner.size());
-    sort_column(inner, value, first);  // CHOLMOD wants each column's rows in order
+    sort_column(inner, value, first);
   }
   Eigen::SparseMatrix<double> coarse(nc, nc);
   coarse.resizeNonZeros(Eigen::Index(inner.size()));
@@ -119,34 +141,34 @@ Eigen::SparseMatrix<double> coarse_operator(const Parts& p) {
 
 }  // namespace
 
-TwoLevelPreconditioner::TwoLevelPreconditioner(const Eigen::SparseMatrix<double>& A) : parts_(new Parts(A)) {
-  const int n = int(A.rows());
+MultilevelPreconditioner::MultilevelPreconditioner(const Eigen::SparseMatrix<double>& A, int largest_factorized)
+    : parts_(new Parts) {
   Parts& p = *parts_;
-  p.damped_inverse_diagonal.resize(size_t(n));
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    const int* cols = p.A.innerIndexPtr() + p.A.outerIndexPtr()[i];
-    const int len = p.A.outerIndexPtr()[i + 1] - p.A.outerIndexPtr()[i];
-    const int* at = std::lower_bound(cols, cols + len, i);
-    const double d = (at != cols + len && *at == i) ? p.A.valuePtr()[p.A.outerIndexPtr()[i] + (at - cols)] : 0.0;
-    p.damped_inverse_diagonal[size_t(i)] = d > 0 ? kJacobiDamping / d : 0;
+  p.levels.emplace_back().view(A);
+  const Eigen::SparseMatrix<double>* matrix = &A;
+  for (;;) {
+    AggregationLevel& l = p.levels.back();
+    damp_diagonal(l);
+    l.aggregate = aggregate_vertices(*matrix, l.coarse_size);
+    list_members(l);
+    const bool last = l.coarse_size <= largest_factorized || 2 * l.coarse_size > l.n;  // or it stopped shrinking
+    if (last) break;
+    AggregationLevel& next = p.levels.emplace_back();
+    next.owned = coarse_operator(l);
+    next.view(next.owned);
+    matrix = &next.owned;
   }
-  p.aggregate = aggregate_vertices(A, p.coarse_size);
-  list_members(p);
   p.coarse.cholmod().print = 0;
-  // Simplicial: the coarse system is small and sparse, where the supernodal method's dense
-  // blocks cost more than they save (a trial at 60 K unknowns while writing this: about 0.4 s
-  // against 0.7 s on a loaded machine).
-  p.coarse.cholmod().supernodal = CHOLMOD_SIMPLICIAL;
   p.coarse.cholmod().nmethods = 1;
   p.coarse.cholmod().method[0].ordering = CHOLMOD_AMD;
-  p.coarse.compute(coarse_operator(p));
+  p.coarse.compute(coarse_operator(p.levels.back()));
   p.ok = p.coarse.info() == Eigen::Success;
 }
 
-TwoLevelPreconditioner::~TwoLevelPreconditioner() = default;
-bool TwoLevelPreconditioner::ok() const { return parts_->ok; }
-int TwoLevelPreconditioner::coarse_size() const { return parts_->coarse_size; }
+MultilevelPreconditioner::~MultilevelPreconditioner() = default;
+bool MultilevelPreconditioner::ok() const { return parts_->ok; }
+int MultilevelPreconditioner::coarse_size() const { return parts_->levels.back().coarse_size; }
+int MultilevelPreconditioner::levels() const { return int(parts_->levels.size()) + 1; }
 
 namespace {
 
@@ -176,65 +198,102 @@ std::array<double, K> column_dots(const Rows& a, const Rows& b) {
 
 // out += sign * (row i of A Z).
 template <int K>
-inline void add_product_row(const Parts& p, int i, const double* Z, double sign, double* out) {
-  const int* ptr = p.A.outerIndexPtr();
-  const int* idx = p.A.innerIndexPtr();
-  const double* val = p.A.valuePtr();
-  for (int e = ptr[i]; e < ptr[i + 1]; ++e) {
-    const double a = sign * val[e];
-    const double* z = Z + size_t(idx[e]) * K;
+inline void add_product_row(const AggregationLevel& l, int i, const double* Z, double sign, double* out) {
+  for (int e = l.ptr[i]; e < l.ptr[i + 1]; ++e) {
+    const double a = sign * l.val[e];
+    const double* z = Z + size_t(l.idx[e]) * K;
     for (int c = 0; c < K; ++c) out[c] += a * z[c];
   }
 }
 
 // Row i of R - A Z.
 template <int K>
-inline void residual_row(const Parts& p, int i, const double* R, const double* Z, double* out) {
+inline void residual_row(const AggregationLevel& l, int i, const double* R, const double* Z, double* out) {
   for (int c = 0; c < K; ++c) out[c] = R[size_t(i) * K + c];
-  add_product_row<K>(p, i, Z, -1.0, out);
+  add_product_row<K>(l, i, Z, -1.0, out);
 }
 
-// The symmetric two-grid cycle Z = cycle(R): damped Jacobi from zero, coarse correction (the
-// residual's restriction fused with its computation), damped Jacobi again. `work`: n x K scratch.
+// Scratch of one level for one solve: its smoothed iterate, and (below the finest) the restricted
+// residual it is given and the correction it returns.
+struct Scratch {
+  Rows work, residual, correction;
+};
+
 template <int K>
-void apply_cycle(const Parts& p, const Rows& R, Rows& Z, Rows& work) {
-  const int n = int(p.aggregate.size()), nc = p.coarse_size;
-  const std::vector<double>& w = p.damped_inverse_diagonal;
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i)
-    for (int c = 0; c < K; ++c) work[size_t(i) * K + c] = w[size_t(i)] * R[size_t(i) * K + c];
-  Eigen::MatrixXd coarse_residual(nc, K);
+void apply_cycle(const Parts& p, size_t level, const Rows& R, Rows& Z, std::vector<Scratch>& scratch);
+
+// The correction of the level below `level` for the residual of `work` (restricted, cycled or
+// solved there), added to `work`.
+template <int K>
+void coarse_correction(const Parts& p, size_t level, const Rows& R, std::vector<Scratch>& scratch) {
+  const AggregationLevel& l = p.levels[level];
+  Rows& work = scratch[level].work;
+  const int nc = l.coarse_size;
+  Rows& restricted = scratch[level + 1].residual;
 #pragma omp parallel for schedule(dynamic, 1024)
   for (int a = 0; a < nc; ++a) {
     double sum[K] = {}, r[K];
-    for (int m = p.member_offset[size_t(a)]; m < p.member_offset[size_t(a) + 1]; ++m) {
-      residual_row<K>(p, p.member[size_t(m)], R.data(), work.data(), r);
+    for (int m = l.member_offset[size_t(a)]; m < l.member_offset[size_t(a) + 1]; ++m) {
+      residual_row<K>(l, l.member[size_t(m)], R.data(), work.data(), r);
       for (int c = 0; c < K; ++c) sum[c] += r[c];
     }
-    for (int c = 0; c < K; ++c) coarse_residual(a, c) = sum[c];
+    for (int c = 0; c < K; ++c) restricted[size_t(a) * K + c] = sum[c];
   }
-  const Eigen::MatrixXd correction = p.coarse.solve(coarse_residual);
+  Rows& correction = scratch[level + 1].correction;
+  if (level + 1 < p.levels.size()) {
+    apply_cycle<K>(p, level + 1, restricted, correction, scratch);
+  } else {
+    Eigen::Matrix<double, Eigen::Dynamic, K> b(nc, K);
+    for (int a = 0; a < nc; ++a)
+      for (int c = 0; c < K; ++c) b(a, c) = restricted[size_t(a) * K + c];
+    const Eigen::Matrix<double, Eigen::Dynamic, K> solved = p.coarse.solve(b);
+    for (int a = 0; a < nc; ++a)
+      for (int c = 0; c < K; ++c) correction[size_t(a) * K + c] = solved(a, c);
+  }
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i)
-    for (int c = 0; c < K; ++c) work[size_t(i) * K + c] += correction(p.aggregate[size_t(i)], c);
+  for (int i = 0; i < l.n; ++i)
+    for (int c = 0; c < K; ++c) work[size_t(i) * K + c] += correction[size_t(l.aggregate[size_t(i)]) * K + c];
+}
+
+// The symmetric V-cycle Z = cycle(R) from `level` down: damped Jacobi from zero, coarse correction
+// (the residual's restriction fused with its computation), damped Jacobi again.
+template <int K>
+void apply_cycle(const Parts& p, size_t level, const Rows& R, Rows& Z, std::vector<Scratch>& scratch) {
+  const AggregationLevel& l = p.levels[level];
+  const std::vector<double>& w = l.damped_inverse_diagonal;
+  Rows& work = scratch[level].work;
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < l.n; ++i)
+    for (int c = 0; c < K; ++c) work[size_t(i) * K + c] = w[size_t(i)] * R[size_t(i) * K + c];
+  coarse_correction<K>(p, level, R, scratch);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < l.n; ++i) {
     double r[K];
-    residual_row<K>(p, i, R.data(), work.data(), r);
+    residual_row<K>(l, i, R.data(), work.data(), r);
     for (int c = 0; c < K; ++c) Z[size_t(i) * K + c] = work[size_t(i) * K + c] + w[size_t(i)] * r[c];
   }
 }
 
 // Q = A D.
 template <int K>
-void multiply(const Parts& p, const Rows& D, Rows& Q) {
-  const int n = int(p.aggregate.size());
+void multiply(const AggregationLevel& l, const Rows& D, Rows& Q) {
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < l.n; ++i) {
     double* q = &Q[size_t(i) * K];
     for (int c = 0; c < K; ++c) q[c] = 0;
-    add_product_row<K>(p, i, D.data(), 1.0, q);
+    add_product_row<K>(l, i, D.data(), 1.0, q);
   }
+}
+
+template <int K>
+std::vector<Scratch> scratch_for(const Parts& p) {
+  std::vector<Scratch> scratch(p.levels.size() + 1);
+  for (size_t k = 0; k < p.levels.size(); ++k) {
+    scratch[k].work.resize(size_t(p.levels[k].n) * K);
+    scratch[k + 1].residual.resize(size_t(p.levels[k].coarse_size) * K);
+    scratch[k + 1].correction.resize(size_t(p.levels[k].coarse_size) * K);
+  }
+  return scratch;
 }
 
 // Conjugate gradients on K columns of B at once, from the columns `first`.. of X.
@@ -242,16 +301,17 @@ template <int K>
 int block_cg(const Parts& p, const Eigen::MatrixXd& B, Eigen::MatrixXd& X, int first, double tolerance,
              int max_iterations) {
   const int n = int(B.rows());
-  Rows x(size_t(n) * K), r(size_t(n) * K), z(size_t(n) * K), d(size_t(n) * K), q(size_t(n) * K),
-      work(size_t(n) * K);
+  const AggregationLevel& fine = p.levels.front();
+  Rows x(size_t(n) * K), r(size_t(n) * K), z(size_t(n) * K), d(size_t(n) * K), q(size_t(n) * K);
+  std::vector<Scratch> scratch = scratch_for<K>(p);
   std::array<double, K> b_norm{};
   for (int c = 0; c < K; ++c) b_norm[size_t(c)] = B.col(first + c).norm();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i)
     for (int c = 0; c < K; ++c) x[size_t(i) * K + c] = X(i, first + c), z[size_t(i) * K + c] = B(i, first + c);
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) residual_row<K>(p, i, z.data(), x.data(), &r[size_t(i) * K]);
-  apply_cycle<K>(p, r, z, work);
+  for (int i = 0; i < n; ++i) residual_row<K>(fine, i, z.data(), x.data(), &r[size_t(i) * K]);
+  apply_cycle<K>(p, 0, r, z, scratch);
   d = z;
   std::array<double, K> rz = column_dots<K>(r, z);
   auto converged = [&] {
@@ -263,7 +323,7 @@ int block_cg(const Parts& p, const Eigen::MatrixXd& B, Eigen::MatrixXd& X, int f
   int iteration = 0;
   while (iteration < max_iterations && !converged()) {
     ++iteration;
-    multiply<K>(p, d, q);
+    multiply<K>(fine, d, q);
     const std::array<double, K> dq = column_dots<K>(d, q);
     std::array<double, K> alpha{}, beta{};
     for (int c = 0; c < K; ++c) alpha[size_t(c)] = dq[size_t(c)] > 0 ? rz[size_t(c)] / dq[size_t(c)] : 0.0;
@@ -273,7 +333,7 @@ int block_cg(const Parts& p, const Eigen::MatrixXd& B, Eigen::MatrixXd& X, int f
         x[size_t(i) * K + c] += alpha[size_t(c)] * d[size_t(i) * K + c];
         r[size_t(i) * K + c] -= alpha[size_t(c)] * q[size_t(i) * K + c];
       }
-    apply_cycle<K>(p, r, z, work);
+    apply_cycle<K>(p, 0, r, z, scratch);
     const std::array<double, K> rz_next = column_dots<K>(r, z);
     for (int c = 0; c < K; ++c) beta[size_t(c)] = rz[size_t(c)] > 0 ? rz_next[size_t(c)] / rz[size_t(c)] : 0.0;
 #pragma omp parallel for schedule(static)
@@ -288,7 +348,7 @@ int block_cg(const Parts& p, const Eigen::MatrixXd& B, Eigen::MatrixXd& X, int f
 
 }  // namespace
 
-int preconditioned_cg(const TwoLevelPreconditioner& M, const Eigen::MatrixXd& B, Eigen::MatrixXd& X, double tolerance,
+int preconditioned_cg(const MultilevelPreconditioner& M, const Eigen::MatrixXd& B, Eigen::MatrixXd& X, double tolerance,
                       int max_iterations) {
   const Parts& p = M.parts();
   int iterations = 0;

@@ -103,14 +103,14 @@ bool same_pattern(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatri
          std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), b.innerIndexPtr());
 }
 
-// Conjugate gradients preconditioned by the two-grid cycle (reliefkit/base/multilevel.h).
-bool two_level(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& X,
+// Conjugate gradients preconditioned by the multilevel cycle (reliefkit/base/multilevel.h).
+bool multilevel(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& X,
                const SolverOptions& o, SolveReport& rep, std::string& why) {
   try {
     report_progress(o, 0.05, o.label);
-    const TwoLevelPreconditioner cycle(A);
+    const MultilevelPreconditioner cycle(A);
     if (!cycle.ok()) {
-      why = "the coarse system of the two-level preconditioner could not be factorized";
+      why = "the coarse system of the multilevel preconditioner could not be factorized";
       return false;
     }
     report_progress(o, 0.2, o.label);
@@ -118,12 +118,12 @@ bool two_level(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, E
     rep.residual = relative_residual(A, B, X);
     if (rep.residual <= o.tolerance) return true;
     char buf[160];
-    std::snprintf(buf, sizeof buf, "two-level conjugate gradients stopped at %d iterations with a residual of %.1e",
+    std::snprintf(buf, sizeof buf, "multilevel conjugate gradients stopped at %d iterations with a residual of %.1e",
                   rep.iterations, rep.residual);
     why = buf;
     return false;
   } catch (const std::bad_alloc&) {
-    why = "not enough memory for the two-level preconditioner";
+    why = "not enough memory for the multilevel preconditioner";
     return false;
   }
 }
@@ -166,9 +166,9 @@ SolveReport solve_spd(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixX
     }
     return converged;
   };
-  const bool two_level_first = o.method == SolverMethod::TwoLevel || (o.method == SolverMethod::Auto && o.prefer_direct);
-  if (two_level_first) {
-    if (attempt("conjugate gradients, two-level preconditioner", two_level(A, B, X, o, rep, why))) return rep;
+  const bool multilevel_first = o.method == SolverMethod::Multilevel || (o.method == SolverMethod::Auto && o.prefer_direct);
+  if (multilevel_first) {
+    if (attempt("conjugate gradients, multilevel preconditioner", multilevel(A, B, X, o, rep, why))) return rep;
     X = guess;
   }
   if (direct_first) {

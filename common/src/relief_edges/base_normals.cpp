@@ -59,7 +59,7 @@ BaseNormals estimate_base_normals(const Surface& surface, const std::vector<Vec3
   so.method = opt.method;
   so.tolerance = opt.tolerance;
   so.max_iterations = opt.max_iterations;
-  so.prefer_direct = out.expected_iterations > kTwoLevelAboveIterations;
+  so.prefer_direct = out.expected_iterations > kMultilevelAboveIterations;
   so.progress = opt.progress;
   so.progress_from = 5;
   so.progress_to = 95;

@@ -162,7 +162,7 @@ TEST(Solvers, MatrixThatIsNotPositiveDefiniteEndsInAReport) {
   EXPECT_THROW(solve_spd(A, Eigen::MatrixXd::Ones(n + 1, 1), X, o), InputError);
 }
 
-TEST(BaseNormals, WideScaleIsSolvedByTheTwoLevelSolverAndAgreesWithCholesky) {
+TEST(BaseNormals, WideScaleIsSolvedByTheMultilevelSolverAndAgreesWithCholesky) {
   rktest::ReliefShape s;
   s.noise = 0.1;
   rktest::Relief r = rktest::disc_on_sphere(s);
@@ -171,12 +171,12 @@ TEST(BaseNormals, WideScaleIsSolvedByTheTwoLevelSolverAndAgreesWithCholesky) {
   BaseNormalOptions o;
   o.scale = 4 * h;  // a narrow step, predicted below the crossover: Jacobi conjugate gradients
   BaseNormals narrow = estimate_base_normals(r.mesh, c.normal, o);
-  EXPECT_LT(narrow.expected_iterations, kTwoLevelAboveIterations);
+  EXPECT_LT(narrow.expected_iterations, kMultilevelAboveIterations);
   EXPECT_EQ(narrow.solve.method, "conjugate gradients");
   EXPECT_TRUE(narrow.solve.converged);
-  o.scale = 100 * h;  // predicted well above the crossovers: the two-level preconditioner
+  o.scale = 100 * h;  // predicted well above the crossovers: the multilevel preconditioner
   BaseNormals wide = estimate_base_normals(r.mesh, c.normal, o);
-  EXPECT_EQ(wide.solve.method, "conjugate gradients, two-level preconditioner");
+  EXPECT_EQ(wide.solve.method, "conjugate gradients, multilevel preconditioner");
   EXPECT_GT(wide.expected_iterations, 400);
   EXPECT_LT(wide.solve.iterations, 40) << wide.solve.summary();
   o.method = SolverMethod::Direct;
@@ -190,7 +190,7 @@ TEST(BaseNormals, WideScaleIsSolvedByTheTwoLevelSolverAndAgreesWithCholesky) {
   EXPECT_LT(worst, 2e-3);  // measured 4.4e-4 deg
 }
 
-TEST(TwoLevel, AggregatesCoverTheGraphAndEachIsConnected) {
+TEST(Multilevel, AggregatesCoverTheGraphAndEachIsConnected) {
   const TriMesh m = rktest::torus(3, 1, 60, 24, 0.3, 5);
   const LaplacianResult lap = cotangent_laplacian(m);
   int count = 0;
@@ -228,7 +228,7 @@ TEST(TwoLevel, AggregatesCoverTheGraphAndEachIsConnected) {
   EXPECT_EQ(reached, size);
 }
 
-TEST(TwoLevel, SolvesAStiffHeatStepInAFewIterationsToTheCholeskyAnswer) {
+TEST(Multilevel, SolvesAStiffHeatStepInAFewIterationsToTheCholeskyAnswer) {
   const TriMesh m = rktest::torus(3, 1, 200, 80, 0.3, 7);
   LaplacianOptions lo;
   lo.clamp_negative = true;
@@ -247,13 +247,48 @@ TEST(TwoLevel, SolvesAStiffHeatStepInAFewIterationsToTheCholeskyAnswer) {
   o.method = SolverMethod::Iterative;
   Eigen::MatrixXd jacobi;
   const SolveReport plain = solve_spd(A, B, jacobi, o);
-  o.method = SolverMethod::TwoLevel;
+  o.method = SolverMethod::Multilevel;
   Eigen::MatrixXd X;
   const SolveReport two = solve_spd(A, B, X, o);
   std::printf("heat step of 60 edges, %ld unknowns: %s; %s; |X - exact| / |exact| = %.1e\n", long(A.rows()),
               two.summary().c_str(), plain.summary().c_str(), (X - exact).norm() / exact.norm());
   ASSERT_TRUE(two.converged) << two.summary();
-  EXPECT_EQ(two.method, "conjugate gradients, two-level preconditioner");
+  EXPECT_EQ(two.method, "conjugate gradients, multilevel preconditioner");
   EXPECT_LT(two.iterations * 8, plain.iterations);
   EXPECT_LT((X - exact).norm() / exact.norm(), 1e-6);
+}
+
+// The V-cycle through more levels (forced on a small mesh by a low factorization limit): still a
+// valid preconditioner (symmetric, so conjugate gradients converge to the Cholesky answer) and
+// still a fraction of Jacobi's iterations.
+TEST(Multilevel, DeeperCyclesSolveTheHeatStepToTheCholeskyAnswer) {
+  const TriMesh m = rktest::torus(3, 1, 200, 80, 0.3, 7);
+  LaplacianOptions lo;
+  lo.clamp_negative = true;
+  LaplacianResult lap = cotangent_laplacian(m, lo);
+  const double h = mesh_scale(m).edge, t = 0.5 * (15 * h) * (15 * h);
+  Eigen::SparseMatrix<double> A = -t * lap.L;
+  for (int v = 0; v < A.rows(); ++v) A.coeffRef(v, v) += lap.mass[v];
+  Eigen::MatrixXd B(A.rows(), 3);
+  for (int v = 0; v < A.rows(); ++v)
+    B.row(v) << lap.mass[v] * m.vertices[v].x(), lap.mass[v] * std::sin(7 * m.vertices[v].z()), lap.mass[v];
+  SolverOptions o;
+  o.tolerance = 1e-8;
+  o.method = SolverMethod::Direct;
+  Eigen::MatrixXd exact;
+  ASSERT_TRUE(solve_spd(A, B, exact, o).converged);
+  // Measured 26, 36 and 44 iterations for 2, 3 and 4 levels.
+  const std::vector<std::pair<int, int>> limit_and_iterations = {{kLargestFactorizedLevel, 32}, {1500, 45}, {100, 55}};
+  for (auto [largest, most_iterations] : limit_and_iterations) {
+    const MultilevelPreconditioner cycle(A, largest);
+    ASSERT_TRUE(cycle.ok());
+    Eigen::MatrixXd X = Eigen::MatrixXd::Zero(B.rows(), B.cols());
+    const int iterations = preconditioned_cg(cycle, B, X, 1e-8, 500);
+    const double error = (X - exact).norm() / exact.norm();
+    std::printf("%d levels, %d unknowns factorized: %d iterations, |X - exact| / |exact| = %.1e\n", cycle.levels(),
+                cycle.coarse_size(), iterations, error);
+    EXPECT_LE(cycle.coarse_size(), std::max(largest, 200));
+    EXPECT_LT(error, 1e-6);
+    EXPECT_LE(iterations, most_iterations);
+  }
 }

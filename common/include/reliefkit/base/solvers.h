@@ -29,9 +29,9 @@ inline Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor>> row_major(
   return {A.rows(), A.cols(), A.nonZeros(), A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr()};
 }
 
-/// Auto: TwoLevel when the caller expects an ill-conditioned system (prefer_direct), else Iterative;
+/// Auto: Multilevel when the caller expects an ill-conditioned system (prefer_direct), else Iterative;
 /// each falls back to Direct when it does not converge (and Direct to Iterative).
-enum class SolverMethod { Auto, Iterative, Direct, TwoLevel };
+enum class SolverMethod { Auto, Iterative, Direct, Multilevel };
 
 struct SolverOptions {
   SolverMethod method = SolverMethod::Auto;
@@ -67,14 +67,14 @@ double predicted_cg_iterations(const Eigen::SparseMatrix<double>& A, const Eigen
 /// A Cholesky factorization costs what conjugate gradients spend on about 400 iterations (3.1 s
 /// at 1 M faces) to 340 (17 s at 4 M): above this prediction, callers set prefer_direct.
 constexpr double kDirectAboveIterations = 400;
-/// Above this prediction, conjugate gradients preconditioned by the two-level cycle
+/// Above this prediction, conjugate gradients preconditioned by the multilevel cycle
 /// (reliefkit/base/multilevel.h) cost less than Jacobi-preconditioned ones, set-up included, and
 /// stay accurate where the prediction is far too low (irregular scans). Base normals at 15 edge
 /// lengths, `build/bench/bench_solvers --repeat 2 fertility.ply penny.ply stanford-bunny.obj`:
 /// Jacobi 633 / 125 / 148 iterations, 0.34 / 0.24 / 0.13 s (the bunny's normals up to 122 deg
-/// from the exact ones at the residual asked), two-level 19 / 15 / 18, 0.05 / 0.13 / 0.11 s
+/// from the exact ones at the residual asked), multilevel (two levels on these) 19 / 15 / 18, 0.05 / 0.13 / 0.11 s
 /// (within 0.01 deg). Predicted for the statuette and the coin: 147 and 126.
-constexpr double kTwoLevelAboveIterations = 60;
+constexpr double kMultilevelAboveIterations = 60;
 
 /// Largest system Auto hands to the direct solver (unknowns); larger ones stay iterative.
 constexpr int kDirectMaxUnknowns = 2500000;
