@@ -18,7 +18,10 @@ ratios:   the three curve filters most used (curvature, Demarcating Curves, Reli
 first-call: the curve filters in two orders in one process (is the first ReliefKit filter of a
           process slower, and which one pays).
 
-Usage: bench/compare_meshlab.py [accuracy] [speed] [demarcating] [ratios] [first-call] [--sizes 100000,1000000,4000000]
+chapters: chapters 5 and 6 (multi-scale and prominent filters) as ratios of the quadric fitting,
+          on a regular 1 M-face relief torus and on a decimated, irregular one.
+
+Usage: bench/compare_meshlab.py [accuracy] [speed] [demarcating] [ratios] [first-call] [chapters] [--sizes 100000,1000000,4000000]
 Needs a build (scripts/build.sh). Runs its own Xvfb.
 """
 import argparse
@@ -288,6 +291,61 @@ def first_call(display, tmp, repeats=2):
                   flush=True)
 
 
+DECIMATE = ("Simplification: Quadric Edge Collapse Decimation", None)
+
+
+def decimate(display, source, faces, out):
+    """MeshLab's quadric edge collapse of `source` to `faces` faces: the irregular triangles of a
+    decimated scan (long and short edges, valences 3 to 12)."""
+    params = [f'<Param type="RichInt" name="TargetFaceNum" value="{faces}"/>',
+              '<Param type="RichFloat" name="TargetPerc" value="0"/>',
+              '<Param type="RichFloat" name="QualityThr" value="0.3"/>',
+              '<Param type="RichBool" name="PreserveBoundary" value="false"/>',
+              '<Param type="RichFloat" name="BoundaryWeight" value="1"/>',
+              '<Param type="RichBool" name="PreserveNormal" value="true"/>',
+              '<Param type="RichBool" name="PreserveTopology" value="true"/>',
+              '<Param type="RichBool" name="OptimalPlacement" value="true"/>',
+              '<Param type="RichBool" name="PlanarQuadric" value="false"/>',
+              '<Param type="RichFloat" name="PlanarWeight" value="0.001"/>',
+              '<Param type="RichBool" name="QualityWeight" value="false"/>',
+              '<Param type="RichBool" name="AutoClean" value="true"/>',
+              '<Param type="RichBool" name="Selected" value="false"/>']
+    raw = out + ".raw.ply"
+    run(display, source, [(DECIMATE[0], params)], out=raw)
+    # Positions and faces only (meshlabserver saved vertex quality too, which made its buffer
+    # accounting refuse the quadric fitting on the copy: "no additional memory available").
+    subprocess.run([MAKE, "convert", raw, out], check=True, capture_output=True)
+    os.unlink(raw)
+
+
+def chapters(display, tmp, repeats=2):
+    """Chapters 5 and 6 (the parameters of examples/multiscale.mlx and examples/prominent.mlx) as
+    ratios of the quadric fitting in the same process, on a regular 1 M-face relief torus and on
+    an irregular one of the same surface (4 M faces decimated to 1 M by MeshLab)."""
+    filters = [(n, example_filter(script, n)) for script, names in
+               [("multiscale.mlx", ["Compute Optimal Scale", "Multi-scale Ridges and Valleys",
+                                    "Multi-scale Relief Edges"]),
+                ("prominent.mlx", ["Prominent Field", "Prominent Coloring", "Prominent Enhancement"])]
+               for n in names]
+    regular = os.path.join(tmp, "relief1000000.ply")
+    fine, irregular = os.path.join(tmp, "relief4000000.ply"), os.path.join(tmp, "relief_decimated.ply")
+    subprocess.run([MAKE, "relief-torus", "1000000", regular], check=True, capture_output=True)
+    subprocess.run([MAKE, "relief-torus", "4000000", fine], check=True, capture_output=True)
+    decimate(display, fine, 1000000, irregular)
+    os.unlink(fine)
+    print("Each filter's time / MeshLab Pseudoinverse Quadric Fitting's, same process, same mesh "
+          f"(run {repeats} times; issue 22: multi-scale <= 5, Prominent Field and Coloring <= 0.5)")
+    print(f"{'mesh':22s} {'faces':>8s} {'PQF s':>6s}  " + "  ".join(f"{n[:16]:>16s}" for n, _ in filters))
+    for label, path in [("relief torus", regular), ("decimated relief", irregular)]:
+        faces = count_faces(path)
+        for _ in range(repeats):
+            phases, _ = run(display, path, [meshlab(3, 0)] + [f for _, f in filters] + [meshlab(3, 0)], timed=True)
+            times = [secs for _, secs, _ in phases[1:]]
+            pqf = 0.5 * (times[0] + times[-1])
+            print(f"{label:22s} {faces:8d} {pqf:6.2f}  " +
+                  "  ".join(f"{t / pqf:6.2f} ({t:5.1f}s)" for t in times[1:-1]), flush=True)
+
+
 def count_faces(ply):
     with open(ply, "rb") as f:
         for line in f:
@@ -315,6 +373,8 @@ def main():
                 ratios(display, tmp)
             if "first-call" in a.what:
                 first_call(display, tmp)
+            if "chapters" in a.what:
+                chapters(display, tmp)
             if "speed" in a.what:
                 speed(display, tmp, [int(s) for s in a.sizes.split(",")])
             if "demarcating" in a.what:

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <complex>
 #include <tuple>
 
 #include "reliefkit/base/laplacian.h"
@@ -39,21 +40,8 @@ void ProminentFieldParams::validate() const {
 
 namespace {
 
-// The sparsity of the 2n x 2n real form of a complex n x n matrix with L's pattern: each entry a
-// 2 x 2 block, so column 2p and 2p+1 each hold twice column p's entries.
-std::vector<int> doubled_outer(const Eigen::SparseMatrix<double>& L) {
-  const int nv = int(L.cols());
-  std::vector<int> outer(2 * nv + 1, 0);
-  for (int p = 0; p < nv; ++p) {
-    const int n = int(L.outerIndexPtr()[p + 1] - L.outerIndexPtr()[p]);
-    outer[2 * p + 1] = outer[2 * p] + 2 * n;
-    outer[2 * p + 2] = outer[2 * p + 1] + 2 * n;
-  }
-  return outer;
-}
-
 // The smooth-field system of eqs. 6.3 / 6.6: the Hermitian connection Laplacian plus the
-// constraint term, written as a real symmetric positive-definite system of twice the size.
+// constraint term, one complex unknown per vertex (the field's angle, times k, in its frame).
 struct FieldSystem {
   const LaplacianResult& lap;
   const std::vector<Vec3>& normal;
@@ -63,8 +51,8 @@ struct FieldSystem {
   const std::vector<double>& beta;
   double weight;
   double k;  // 2 for a line field (the angle doubled), 1 for a vector field
-  Eigen::SparseMatrix<double> A;
-  Eigen::VectorXd rhs, guess;
+  HermitianMatrix A;  // L's pattern
+  Eigen::VectorXcd rhs, guess;
 
   // The rotation T_jp that turns p's frame into j's (the angle of p's e1 seen in j's frame),
   // applied k times, as (cos, sin); false where the pair is not coupled.
@@ -79,47 +67,35 @@ struct FieldSystem {
     return true;
   }
 
-  // Columns 2p and 2p+1 of A, and p's entries of the right-hand side and the starting guess.
-  void fill(int p, const std::vector<int>& outer) {
+  // Row p of A (H_pj = -w conj(T_jp), Hermitian), and p's entries of the right-hand side and the
+  // starting guess.
+  void fill(int p) {
     const Eigen::SparseMatrix<double>& L = lap.L;
-    const auto* rows = L.innerIndexPtr() + L.outerIndexPtr()[p];
-    const auto* vals = L.valuePtr() + L.outerIndexPtr()[p];
-    const int n = int(L.outerIndexPtr()[p + 1] - L.outerIndexPtr()[p]);
-    int* ia = A.innerIndexPtr() + outer[2 * p];
-    int* ib = A.innerIndexPtr() + outer[2 * p + 1];
-    double* va = A.valuePtr() + outer[2 * p];
-    double* vb = A.valuePtr() + outer[2 * p + 1];
+    const int first = int(L.outerIndexPtr()[p]), n = int(L.outerIndexPtr()[p + 1]) - first;
+    const int* cols = L.innerIndexPtr() + first;
+    const double* w = L.valuePtr() + first;
+    std::complex<double>* row = A.valuePtr() + first;
     double diag = 0;
     int diag_at = -1;
     for (int q = 0; q < n; ++q) {
-      const int j = rows[q];
-      ia[2 * q] = ib[2 * q] = 2 * j;
-      ia[2 * q + 1] = ib[2 * q + 1] = 2 * j + 1;
+      const int j = cols[q];
+      row[q] = 0;
+      double cs, sn;
       if (j == p) {
         diag_at = q;
-        continue;
+      } else if (w[q] > 0 && std::isfinite(w[q]) && rotation(p, j, cs, sn)) {
+        row[q] = {-w[q] * cs, w[q] * sn};
+        diag += w[q];
       }
-      const double w = vals[q];
-      double re = 0, im = 0, cs, sn;
-      if (w > 0 && std::isfinite(w) && rotation(p, j, cs, sn)) {  // H_jp = -w T_jp
-        re = -w * cs, im = -w * sn;
-        diag += w;
-      }
-      va[2 * q] = re, va[2 * q + 1] = im;    // column 2p: (a, b)
-      vb[2 * q] = -im, vb[2 * q + 1] = re;   // column 2p+1: (-b, a)
     }
     const double m = lap.mass[p];
     const double mu = weight * beta[p] * m, eps = 1e-6 * weight * m;  // weight: per unit area
-    const double d = diag + mu + eps;
-    if (diag_at >= 0) {
-      va[2 * diag_at] = d, va[2 * diag_at + 1] = 0;
-      vb[2 * diag_at] = 0, vb[2 * diag_at + 1] = d;
-    }
+    if (diag_at >= 0) row[diag_at] = diag + mu + eps;
     const Vec3& r = target[p];
     const double phi = std::atan2(r.dot(e2[p]), r.dot(e1[p]));
-    const double cx = std::cos(k * phi), cy = std::sin(k * phi);
-    rhs[2 * p] = mu * cx, rhs[2 * p + 1] = mu * cy;
-    guess[2 * p] = beta[p] * cx, guess[2 * p + 1] = beta[p] * cy;  // free vertices start at 0
+    const std::complex<double> z = std::polar(1.0, k * phi);
+    rhs[p] = mu * z;
+    guess[p] = beta[p] * z;  // free vertices start at 0
   }
 
   void build() {
@@ -127,26 +103,26 @@ struct FieldSystem {
     e2.resize(nv);
 #pragma omp parallel for schedule(static)
     for (int p = 0; p < nv; ++p) e2[p] = normal[p].cross(e1[p]);
-    const std::vector<int> outer = doubled_outer(lap.L);
-    A.resize(2 * nv, 2 * nv);
-    A.resizeNonZeros(outer[2 * nv]);
-    std::copy(outer.begin(), outer.end(), A.outerIndexPtr());
-    rhs = Eigen::VectorXd::Zero(2 * nv);
-    guess.resize(2 * nv);
+    A.resize(nv, nv);
+    A.resizeNonZeros(lap.L.nonZeros());
+    std::copy(lap.L.outerIndexPtr(), lap.L.outerIndexPtr() + nv + 1, A.outerIndexPtr());
+    std::copy(lap.L.innerIndexPtr(), lap.L.innerIndexPtr() + lap.L.nonZeros(), A.innerIndexPtr());
+    rhs.resize(nv);
+    guess.resize(nv);
 #pragma omp parallel for schedule(dynamic, 4096)
-    for (int p = 0; p < nv; ++p) fill(p, outer);
+    for (int p = 0; p < nv; ++p) fill(p);
   }
 
   // The field from the solution z: its angle divided by k in each frame, unit; where |z| is
   // (nearly) zero no feature reaches and the field is the target.
-  void read_field(const Eigen::MatrixXd& X, ProminentFieldResult& out) const {
+  void read_field(const Eigen::VectorXcd& X, ProminentFieldResult& out) const {
     const int nv = int(e2.size());
     sized(out.field, size_t(nv), Vec3(Vec3::Zero()));
     sized(out.strength, size_t(nv));
     long long unreached = 0;
 #pragma omp parallel for schedule(static) reduction(+ : unreached)
     for (int p = 0; p < nv; ++p) {
-      const double x = X(2 * p, 0), y = X(2 * p + 1, 0);
+      const double x = X[p].real(), y = X[p].imag();
       const double s = std::hypot(x, y);
       out.strength[p] = std::isfinite(s) ? s : 0;
       if (!(s > 1e-3)) {
@@ -175,8 +151,8 @@ void solve_prominent_field(const Surface& surface, const std::vector<Vec3>& norm
   so.tolerance = kFieldTolerance;
   so.max_iterations = 2000;
   so.label = "Prominent field";
-  Eigen::MatrixXd X = sys.guess;
-  out.solve = solve_spd(sys.A, sys.rhs, X, so);
+  Eigen::VectorXcd X = sys.guess;
+  out.solve = solve_hpd(sys.A, sys.rhs, X, so);
   sys.read_field(X, out);
 }
 

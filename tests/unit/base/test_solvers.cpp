@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <cstdio>
 
 #include "reliefkit/relief_edges/base_normals.h"
@@ -300,4 +301,55 @@ TEST(Multilevel, DeeperCyclesSolveTheHeatStepToTheCholeskyAnswer) {
     EXPECT_LT(error, 1e-6);
     EXPECT_LE(iterations, most_iterations);
   }
+}
+
+// A Hermitian positive-definite system with genuinely complex couplings: D^H (M - tL) D for
+// random unit phases D (a connection Laplacian of rotations that compose to identity around
+// loops), on the heat step's torus.
+TEST(Hermitian, ComplexConjugateGradientsAgreeWithCholeskyOnTheRealForm) {
+  const HeatStep s = heat_step_on_torus(4, 1);
+  const int n = int(s.A.rows());
+  std::vector<std::complex<double>> phase(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) phase[size_t(i)] = std::polar(1.0, 2.4 * i + 0.3 * std::sin(i));
+  std::vector<Eigen::Triplet<std::complex<double>>> entries;
+  for (int c = 0; c < n; ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(s.A, c); it; ++it)
+      entries.emplace_back(int(it.row()), c, std::conj(phase[size_t(it.row())]) * it.value() * phase[size_t(c)]);
+  HermitianMatrix A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  Eigen::VectorXcd b(n);
+  for (int i = 0; i < n; ++i) b[i] = std::conj(phase[size_t(i)]) * std::complex<double>(s.B(i, 0), 0.5 * s.B(i, 0));
+  // The exact answer: phase times the real system's solution for the real and imaginary parts.
+  Eigen::VectorXcd exact(n);
+  for (int i = 0; i < n; ++i) exact[i] = std::conj(phase[size_t(i)]) * std::complex<double>(s.exact(i, 0), 0.5 * s.exact(i, 0));
+  SolverOptions o;
+  o.tolerance = 1e-8;
+  Eigen::VectorXcd x;
+  const SolveReport cg = solve_hpd(A, b, x, o);
+  std::printf("Hermitian %d unknowns: %s, |x - exact| / |exact| = %.1e\n", n, cg.summary().c_str(),
+              (x - exact).norm() / exact.norm());
+  EXPECT_EQ(cg.method, "conjugate gradients");
+  EXPECT_TRUE(cg.converged);
+  EXPECT_LT((x - exact).norm() / exact.norm(), 1e-6);
+  // Stopped after two iterations, the solve falls back to CHOLMOD on the real form.
+  o.max_iterations = 2;
+  Eigen::VectorXcd y;
+  const SolveReport fallback = solve_hpd(A, b, y, o);
+  EXPECT_EQ(fallback.method, "Cholesky (CHOLMOD)") << fallback.summary();
+  EXPECT_NE(fallback.note.find("complex conjugate gradients stopped at 2 iterations"), std::string::npos);
+  EXPECT_LT((y - exact).norm() / exact.norm(), 1e-8);
+}
+
+TEST(Hermitian, RealFormWritesEachEntryAsARotationBlock) {
+  HermitianMatrix A(2, 2);
+  std::vector<Eigen::Triplet<std::complex<double>>> e = {{0, 0, {3, 0}}, {0, 1, {1, 2}}, {1, 0, {1, -2}}, {1, 1, {5, 0}}};
+  A.setFromTriplets(e.begin(), e.end());
+  const Eigen::MatrixXd R = Eigen::MatrixXd(real_form(A));
+  Eigen::MatrixXd expected(4, 4);
+  expected << 3, 0, 1, -2,
+              0, 3, 2, 1,
+              1, 2, 5, 0,
+              -2, 1, 0, 5;
+  EXPECT_EQ(R, expected);
+  EXPECT_EQ(R, R.transpose());
 }

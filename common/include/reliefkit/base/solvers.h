@@ -15,6 +15,8 @@
 // on the result, whichever solver produced it, so a caller can always say how good it is.
 #pragma once
 
+#include <complex>
+
 #include <Eigen/Sparse>
 #include <memory>
 #include <string>
@@ -58,6 +60,21 @@ struct SolveReport {
 /// only for inconsistent sizes.
 SolveReport solve_spd(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& X,
                       const SolverOptions& options = {});
+
+/// A Hermitian matrix stored by rows, both triangles.
+using HermitianMatrix = Eigen::SparseMatrix<std::complex<double>, Eigen::RowMajor>;
+
+/// Solves A x = b for a Hermitian positive-definite A: Jacobi-preconditioned conjugate gradients
+/// in complex arithmetic (the iterates of the same method on the real form of twice the size, at
+/// well under half its memory traffic: a 2 x 2 rotation block is one complex number) on every
+/// core; when they do not converge, solve_spd on real_form(A) (its Cholesky fallback). x: initial
+/// guess in (when its size matches), solution out; the report as solve_spd's.
+SolveReport solve_hpd(const HermitianMatrix& A, const Eigen::VectorXcd& b, Eigen::VectorXcd& x,
+                      const SolverOptions& options = {});
+
+/// The real symmetric form of twice the size: entry a + ib becomes the block [[a, -b], [b, a]]
+/// (rows and columns 2i, 2i+1 hold the real and imaginary parts of unknown i).
+Eigen::SparseMatrix<double> real_form(const HermitianMatrix& A);
 
 /// Conjugate-gradient iterations predicted for a "mass + stiffness" system A = M + K (diagonal
 /// mass M): about sqrt(condition number), the condition number about the median of A_ii / M_i.

@@ -15,8 +15,8 @@
 // (angle applied once) is kept as FieldRepresentation::Vector for comparison: there the two signs
 // a principal direction can take cancel (tests/unit/prominent/test_prominent.cpp measures it).
 //
-// One sparse symmetric positive-definite solve (the complex Hermitian system written as a real
-// system of twice the size, reliefkit/base/solvers.h):
+// One sparse Hermitian positive-definite solve, one complex unknown per vertex (solve_hpd,
+// reliefkit/base/solvers.h):
 //   minimise  sum_edges w_pj |z_p - T_pj z_j|^2 + sum_p lambda beta_p A_p |z_p - r_p|^2,
 // w_pj the cotangent weights (eq. 6.5, clamped at zero), A_p the vertex area, lambda =
 // constraint_weight / (edge length)^2: beta_p = 1 holds the field at r_p (eq. 6.3's first line,
