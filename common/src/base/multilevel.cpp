@@ -7,6 +7,7 @@
 #include <deque>
 #include <vector>
 
+#include "reliefkit/base/reductions.h"
 #include "reliefkit/base/solvers.h"
 
 namespace reliefkit {
@@ -176,24 +177,16 @@ namespace {
 // then read each neighbour's values from one cache line. Buffers are allocated once per solve.
 using Rows = std::vector<double>;
 
-constexpr int kReductionBlock = 4096;  // rows per partial sum: the same sums on any number of cores
-
-// Per column, Σ_i a_i b_i, summed in fixed blocks (reproducible whatever the number of threads).
+// Per column, Σ_i a_i b_i (reproducible whatever the number of threads: reductions.h).
 template <int K>
 std::array<double, K> column_dots(const Rows& a, const Rows& b) {
-  const int n = int(a.size() / K), blocks = (n + kReductionBlock - 1) / kReductionBlock;
-  std::vector<std::array<double, K>> partial(static_cast<size_t>(blocks));
-#pragma omp parallel for schedule(static)
-  for (int blk = 0; blk < blocks; ++blk) {
-    std::array<double, K> s{};
-    for (int i = blk * kReductionBlock; i < std::min(n, (blk + 1) * kReductionBlock); ++i)
-      for (int c = 0; c < K; ++c) s[size_t(c)] += a[size_t(i) * K + c] * b[size_t(i) * K + c];
-    partial[size_t(blk)] = s;
-  }
-  std::array<double, K> sum{};
-  for (const auto& s : partial)
-    for (int c = 0; c < K; ++c) sum[size_t(c)] += s[size_t(c)];
-  return sum;
+  using Column = Eigen::Matrix<double, K, 1>;
+  const Column sum = blocked_sum(int(a.size() / K), Column(Column::Zero()), [&](int i) {
+    return Column(Eigen::Map<const Column>(&a[size_t(i) * K]).cwiseProduct(Eigen::Map<const Column>(&b[size_t(i) * K])));
+  });
+  std::array<double, K> out;
+  for (int c = 0; c < K; ++c) out[size_t(c)] = sum[c];
+  return out;
 }
 
 // out += sign * (row i of A Z).

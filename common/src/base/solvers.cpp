@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "reliefkit/base/multilevel.h"
+#include "reliefkit/base/reductions.h"
 
 namespace reliefkit {
 
@@ -147,24 +148,6 @@ Eigen::SparseMatrix<double> real_form(const HermitianMatrix& A) {
 
 namespace {
 
-constexpr int kHermitianBlock = 4096;  // rows per partial sum: the same sums on any number of cores
-
-// Σ_i f(i) over [0, n), summed in fixed blocks (reproducible whatever the number of threads).
-template <typename Term>
-double blocked_sum(int n, Term f) {
-  const int blocks = (n + kHermitianBlock - 1) / kHermitianBlock;
-  std::vector<double> partial(size_t(blocks), 0.0);
-#pragma omp parallel for schedule(static)
-  for (int b = 0; b < blocks; ++b) {
-    double sum = 0;
-    for (int i = b * kHermitianBlock; i < std::min(n, (b + 1) * kHermitianBlock); ++i) sum += f(i);
-    partial[size_t(b)] = sum;
-  }
-  double total = 0;
-  for (double p : partial) total += p;
-  return total;
-}
-
 // Jacobi-preconditioned conjugate gradients on a Hermitian positive-definite A, every loop on
 // every core (Eigen's own keeps its vector updates on one). Returns the iterations; x in and out.
 int hermitian_cg(const HermitianMatrix& A, const Eigen::VectorXcd& b, Eigen::VectorXcd& x, double tolerance,
@@ -186,25 +169,29 @@ int hermitian_cg(const HermitianMatrix& A, const Eigen::VectorXcd& b, Eigen::Vec
     z[i] = inverse_diagonal[i] * r[i];
     d[i] = z[i];
   }
-  const double limit = tolerance * tolerance * std::max(blocked_sum(n, [&](int i) { return std::norm(b[i]); }), 1e-300);
-  double rz = blocked_sum(n, [&](int i) { return std::real(std::conj(r[i]) * z[i]); });
-  double rr = blocked_sum(n, [&](int i) { return std::norm(r[i]); });
+  const double limit = tolerance * tolerance * std::max(blocked_sum(n, 0.0, [&](int i) { return std::norm(b[i]); }), 1e-300);
+  const auto squared_and_preconditioned = [&](int i) {
+    return Eigen::Vector2d(std::norm(r[i]), std::real(std::conj(r[i]) * z[i]));
+  };
+  const Eigen::Vector2d first = blocked_sum(n, Eigen::Vector2d(0, 0), squared_and_preconditioned);
+  double rr = first[0], rz = first[1];
   int iteration = 0;
   for (; iteration < max_iterations && rr > limit; ++iteration) {
-    const double dq = blocked_sum(n, [&](int i) {
+    const double dq = blocked_sum(n, 0.0, [&](int i) {
       q[i] = row_times(d, i);
       return std::real(std::conj(d[i]) * q[i]);
     });
     if (!(dq > 0)) break;
     const double alpha = rz / dq;
-    double rz_next = 0;
-    rr = blocked_sum(n, [&](int i) {
+    // One pass: x and r updated, z = D⁻¹ r, and both |r|² and r·z for the next step.
+    const Eigen::Vector2d sums = blocked_sum(n, Eigen::Vector2d(0, 0), [&](int i) {
       x[i] += alpha * d[i];
       r[i] -= alpha * q[i];
       z[i] = inverse_diagonal[i] * r[i];
-      return std::norm(r[i]);
+      return squared_and_preconditioned(i);
     });
-    rz_next = blocked_sum(n, [&](int i) { return std::real(std::conj(r[i]) * z[i]); });
+    rr = sums[0];
+    const double rz_next = sums[1];
     const double beta = rz_next / rz;
     rz = rz_next;
 #pragma omp parallel for schedule(static)
