@@ -5,11 +5,14 @@
 // median / largest angle between its normals and those of a Cholesky solve (exact to rounding),
 // so a fast but unconverged solve shows as such. Mesh files given instead (real scans) are solved
 // at the default base scale.
+// On the torus it then times the multilevel cycle against two levels (set-up and iterations
+// apart), and a Hermitian system solved with complex unknowns against its real form.
 //   build/bench/bench_solvers [--sizes 1000000] [--repeat 1] [scan.ply ...]
 #include <omp.h>
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -17,6 +20,9 @@
 #include "reliefkit/relief_edges/base_normals.h"
 #include "bench_util.h"
 #include "reliefkit/base/curvature.h"
+#include "reliefkit/base/laplacian.h"
+#include "reliefkit/base/multilevel.h"
+#include "reliefkit/base/solvers.h"
 #include "reliefkit/base/repair.h"
 #include "mesh_files.h"
 #include "shapes.h"
@@ -62,6 +68,84 @@ void compare_solvers(const TriMesh& m, const std::vector<double>& scales_in_edge
   }
 }
 
+// The base-normal system M - tL (clamped weights) at `edges` edge lengths, as estimate_base_normals builds it.
+Eigen::SparseMatrix<double> heat_step(const TriMesh& m, double edges, Eigen::VectorXd& mass) {
+  LaplacianOptions lo;
+  lo.clamp_negative = true;
+  LaplacianResult lap = cotangent_laplacian(m, lo);
+  const double h = mesh_scale(m).edge, t = 0.5 * (edges * h) * (edges * h);
+  Eigen::SparseMatrix<double> A = -t * lap.L;
+  for (int v = 0; v < A.rows(); ++v) A.coeffRef(v, v) += lap.mass[v] > 0 ? lap.mass[v] : 1.0;
+  mass = lap.mass;
+  return A;
+}
+
+// The V-cycle through as many levels as reach kLargestFactorizedLevel against the two-level cycle
+// (every aggregate of the finest level factorized), set-up and iterations timed apart, on the
+// base normals' right-hand sides.
+void compare_levels(const TriMesh& m, const std::vector<double>& scales_in_edges) {
+  const std::vector<Vec3> n = vertex_normals(m, vertex_faces(m));
+  std::printf("%-9s %-6s %-24s %8s %8s %8s %10s %8s\n", "faces", "scale", "levels (factorized)", "set-up s",
+              "solve s", "total s", "iterations", "residual");
+  for (double edges : scales_in_edges) {
+    Eigen::VectorXd mass;
+    const Eigen::SparseMatrix<double> A = heat_step(m, edges, mass);
+    Eigen::MatrixXd B(A.rows(), 3);
+    for (int v = 0; v < A.rows(); ++v) B.row(v) = (mass[v] > 0 ? mass[v] : 1.0) * n[size_t(v)].transpose();
+    for (int largest : {kLargestFactorizedLevel, int(A.rows())}) {
+      const double t0 = rkbench::now();
+      const MultilevelPreconditioner cycle(A, largest);
+      const double t1 = rkbench::now();
+      Eigen::MatrixXd X = B;
+      const int iterations = preconditioned_cg(cycle, B, X, 1e-3, 500);
+      const double t2 = rkbench::now();
+      const double residual = (A * X - B).norm() / B.norm();
+      const std::string levels = std::to_string(cycle.levels()) + " (" + std::to_string(cycle.coarse_size()) + ")";
+      std::printf("%-9zu %-6.0f %-24s %8.3f %8.3f %8.3f %10d %8.1e\n", m.faces.size(), edges, levels.c_str(), t1 - t0,
+                  t2 - t1, t2 - t0, iterations, residual);
+      std::fflush(stdout);
+    }
+  }
+}
+
+// A Hermitian system with complex couplings — the heat step at 15 edge lengths seen through unit
+// phases on the vertices, D^H (M - tL) D, like the prominent field's connection Laplacian — solved
+// by solve_hpd (complex unknowns, every loop on both cores) and by Eigen's conjugate gradients on
+// its real form of twice the size (how the prominent field solved it until 4 Dec), to 1e-2.
+void compare_hermitian(const TriMesh& m) {
+  Eigen::VectorXd mass;
+  const Eigen::SparseMatrix<double> S = heat_step(m, 15, mass);
+  const int nv = int(S.rows());
+  std::vector<std::complex<double>> phase(static_cast<size_t>(nv));
+  for (int i = 0; i < nv; ++i) phase[size_t(i)] = std::polar(1.0, 2.4 * i);
+  std::vector<Eigen::Triplet<std::complex<double>>> entries;
+  for (int c = 0; c < nv; ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(S, c); it; ++it)
+      entries.emplace_back(int(it.row()), c, std::conj(phase[size_t(it.row())]) * it.value() * phase[size_t(c)]);
+  HermitianMatrix A(nv, nv);
+  A.setFromTriplets(entries.begin(), entries.end());
+  Eigen::VectorXcd b(nv);
+  for (int i = 0; i < nv; ++i) b[i] = mass[i] * std::polar(1.0, std::sin(0.001 * i));
+  SolverOptions o;
+  o.tolerance = 1e-2;
+  o.max_iterations = 2000;
+  Eigen::VectorXcd x;
+  double t0 = rkbench::now();
+  const SolveReport complex_cg = solve_hpd(A, b, x, o);
+  const double complex_seconds = rkbench::now() - t0;
+  const Eigen::SparseMatrix<double> R = real_form(A);
+  Eigen::MatrixXd B(2 * nv, 1), X;
+  for (int i = 0; i < nv; ++i) B(2 * i, 0) = b[i].real(), B(2 * i + 1, 0) = b[i].imag();
+  o.method = SolverMethod::Iterative;
+  t0 = rkbench::now();
+  const SolveReport real_cg = solve_spd(R, B, X, o);
+  const double real_seconds = rkbench::now() - t0;
+  std::printf("%-9zu complex unknowns (solve_hpd)      %8.3f s  %s\n", m.faces.size(), complex_seconds,
+              complex_cg.summary().c_str());
+  std::printf("%-9zu real form, Eigen CG (solve_spd)   %8.3f s  %s\n", m.faces.size(), real_seconds,
+              real_cg.summary().c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -88,6 +172,11 @@ int main(int argc, char** argv) {
   }
   for (long target : args.sizes) {
     std::printf("relief torus\n");
-    compare_solvers(rktest::relief_torus(target), {15.0, 60.0, 227.0}, args.repeat);
+    const TriMesh torus = rktest::relief_torus(target);
+    compare_solvers(torus, {15.0, 60.0, 227.0}, args.repeat);
+    std::printf("\nMultilevel cycle against two levels, relief torus (one run each)\n");
+    compare_levels(torus, {15.0, 60.0, 227.0});
+    std::printf("\nHermitian system at 15 edge lengths, relief torus\n");
+    compare_hermitian(torus);
   }
 }

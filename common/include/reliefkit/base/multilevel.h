@@ -16,9 +16,11 @@
 //     about 3x dearer (tried, not kept);
 //   - coarse operator Pᵀ A P (Galerkin: the couplings summed aggregate by aggregate), aggregated
 //     again while it has more than kLargestFactorizedLevel unknowns; the last one factorized once
-//     by CHOLMOD. A 1 M-face mesh has three levels (500 K, 60 K and 7 K unknowns): factorizing the
-//     60 K level cost 0.25-0.34 s and its solves 10 ms per cycle, the 7 K level a tenth of that,
-//     for 15 iterations instead of 11 at 15 edge lengths. Meshes below about 300 K faces keep two;
+//     by CHOLMOD. A 1 M-face mesh has three levels (500 K, 60 K and 7 K unknowns); against two
+//     levels (the 60 K one factorized), `build/bench/bench_solvers --sizes 1000000`: set-up 0.055 s
+//     instead of 0.29-0.32 s, 15 / 21 / 23 iterations instead of 11 / 16 / 17 at 15 / 60 / 227 edge
+//     lengths, 0.35 / 0.49 / 0.53 s instead of 0.68 / 0.80 / 0.89 s in all. Meshes below about
+//     300 K faces keep two levels;
 //   - cycle: damped Jacobi, coarse correction (recursively), damped Jacobi — symmetric, so it is a
 //     valid preconditioner for conjugate gradients.
 // On the 1 M-face relief torus with two levels: 11, 17 and 21 iterations at 15, 60 and 227 edge
