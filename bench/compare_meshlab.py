@@ -87,7 +87,7 @@ def start_xvfb():
     for d in range(91, 120):
         if os.path.exists(f"/tmp/.X{d}-lock"):
             continue
-        p = subprocess.Popen(["Xvfb", f":{d}", "-screen", "0", "1024x768x24", "-nolisten", "tcp"],
+        p = subprocess.Popen(["Xvfb", f":{d}", "-screen", "0", "1024x768x24", "-nolisten", "tcp", "-noreset"],
                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         time.sleep(1.0)
         if p.poll() is None:

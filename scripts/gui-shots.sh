@@ -18,7 +18,7 @@ actions="$(realpath "$1")"; shift
 [ "${1:-}" = "--" ] && shift
 command -v xdotool >/dev/null || { echo "gui-shots.sh: xdotool missing (scripts/setup.sh installs it)" >&2; exit 1; }
 export RK_ACTIONS="$actions" RK_HERE="$here" RK_CWD="$PWD"
-xvfb-run -a -s "-screen 0 1280x900x24" bash -c '
+xvfb-run -a -s "-screen 0 1280x900x24 -noreset" bash -c '
   set -u
   "$RK_HERE/scripts/meshlab" "$@" >/tmp/rk_meshlab_gui.log 2>&1 &
   pid=$!

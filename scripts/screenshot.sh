@@ -17,7 +17,7 @@ done
 [ "${1:-}" = "--" ] && shift
 args=("$@")
 export RK_SHOT_OUT="$out" RK_SHOT_WAIT="$wait" RK_SHOT_KEYS="$keys" RK_HERE="$here"
-xvfb-run -a -s "-screen 0 1280x900x24" bash -c '
+xvfb-run -a -s "-screen 0 1280x900x24 -noreset" bash -c '
   "$RK_HERE/scripts/meshlab" "$@" >/tmp/rk_meshlab_gui.log 2>&1 &
   pid=$!
   sleep "$RK_SHOT_WAIT"
