@@ -21,7 +21,10 @@ first-call: the curve filters in two orders in one process (is the first ReliefK
 chapters: chapters 5 and 6 (multi-scale and prominent filters) as ratios of the quadric fitting,
           on a regular 1 M-face relief torus and on a decimated, irregular one.
 
-Usage: bench/compare_meshlab.py [accuracy] [speed] [demarcating] [ratios] [first-call] [chapters] [--sizes 100000,1000000,4000000]
+scans:    single- against multi-scale curves at defaults (build/bench/bench_multiscale_scans) on
+          the shared scans and on copies decimated by MeshLab to half their faces.
+
+Usage: bench/compare_meshlab.py [accuracy] [speed] [demarcating] [ratios] [first-call] [chapters] [scans] [--sizes 100000,1000000,4000000]
 Needs a build (scripts/build.sh). Runs its own Xvfb.
 """
 import argparse
@@ -355,6 +358,16 @@ def count_faces(ply):
                 return 0
 
 
+def scans(display, tmp):
+    """The multi-scale fidelity figures on the shared scans and on decimated (irregular) copies."""
+    meshes = []
+    for name, ply in shared_scans(tmp):
+        half = os.path.join(tmp, name + "_decimated.ply")
+        decimate(display, ply, count_faces(ply) // 2, half)
+        meshes += [ply, half]
+    subprocess.run([os.path.join(BUILD, "bench", "bench_multiscale_scans")] + meshes, check=True)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("what", nargs="*", default=["accuracy", "speed", "demarcating"])
@@ -375,6 +388,8 @@ def main():
                 first_call(display, tmp)
             if "chapters" in a.what:
                 chapters(display, tmp)
+            if "scans" in a.what:
+                scans(display, tmp)
             if "speed" in a.what:
                 speed(display, tmp, [int(s) for s in a.sizes.split(",")])
             if "demarcating" in a.what:

@@ -45,15 +45,18 @@ const char* kSmoothedInfo =
 const char* kRidgesInfo =
     "Draws <b>ridges and valleys</b> (crests and grooves) with <b>no smoothing scale to choose</b>: every "
     "part of the surface is read at the scale of its own features, so fine grooves and wide ones come out "
-    "in one run, on noisy scans too. A groove's banks are reported as the groove, not as ridges of their "
-    "own.<br><br>"
+    "in one run, on noisy scans too. What <i>Ridges and Valleys</i> draws at its automatic smoothing is "
+    "kept, joined into longer lines, and the wider features are added. A groove's banks are reported as the "
+    "groove, not as ridges of their own.<br><br>"
     "<b>Output</b>: two new layers <i>&lt;mesh&gt; – multi-scale ridges</i> and <i>– multi-scale valleys</i> "
     "(edges on the input surface; vertex quality = normalised strength; save them as OBJ); per-vertex "
     "attribute <code>optimal_scale</code> on the mesh.";
 
 const char* kReliefInfo =
     "Draws <b>relief edges</b> (outlines of stamped or carved relief) with <b>no smoothing scale to "
-    "choose</b>: each outline is found on the surface smoothed by its own optimal scale.<br><br>"
+    "choose</b>: each outline is found on the surface smoothed by its own optimal scale, and the fine "
+    "outlines <i>Relief Edges</i> draws at its automatic smoothing (lettering) are kept where the chosen "
+    "scale is fine.<br><br>"
     "<b>Output</b>: a new layer <i>&lt;mesh&gt; – multi-scale relief edges</i> (edges on the input surface; "
     "vertex quality = edge strength in degrees; save it as OBJ); per-vertex attribute "
     "<code>optimal_scale</code> on the mesh.";
@@ -216,7 +219,7 @@ void ridges_parameters(MeshModel&, RichParameterList& par) {
   par.addParam(RichFloat("threshold", 1.f, "Strength threshold",
                          "Keeps lines at least this strong, relative to the automatic threshold (1). Smaller values "
                          "show fainter lines, larger only the clearest."));
-  par.addParam(RichFloat("min_length", float(RidgeValleyParams::kDefaultMinLengthEdges), "Minimum curve length",
+  par.addParam(RichFloat("min_length", float(kMultiscaleMinLengthEdges), "Minimum curve length",
                          "Drops pieces shorter than this many edge lengths. 0 keeps all."));
   add_scale_range(par);
   add_lift(par);

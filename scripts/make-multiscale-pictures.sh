@@ -1,27 +1,32 @@
 #!/usr/bin/env bash
-# Re-makes the pictures of docs/multiscale.md: single-scale against multi-scale ridges & valleys
-# and relief edges on the bundled coin (the example scripts at their defaults), shown in the real
-# MeshLab GUI under a virtual display (scripts/screenshot.sh). Run scripts/make-doc-pictures.sh
-# first (it makes the shaded coin and the single-scale layers).
+# Re-makes the pictures of docs/multiscale.md: on every shared scan (the coin, the statuette, the
+# bunny), the single-scale filters (examples/relief_edges.mlx) beside the multi-scale ones
+# (examples/multiscale.mlx), all at their defaults, shown in the real MeshLab GUI under a virtual
+# display (scripts/screenshot.sh). Run scripts/make-doc-pictures.sh first (it makes the shaded
+# scans and the single-scale pictures docs/img/scan_<scan>_{relief,ridges}.png).
+# Output: docs/img/scan_<scan>_ms_{relief,ridges}.png and the pairs scan_<scan>_pair_{relief,ridges}.png.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="$here/build/doc-pictures"; mkdir -p "$out"
-coin="$here/examples/data/penny.ply"
-"$here/scripts/meshlabserver" -i "$coin" -o "$out/penny_scale.ply" -l 0 -m vq \
-  -o "$out/penny_ms_ridges.obj" -l 1 -o "$out/penny_ms_valleys.obj" -l 2 -o "$out/penny_ms_relief.obj" -l 3 \
-  -s "$here/examples/multiscale.mlx" >"$out/penny_multiscale.log" 2>&1
-"$here/scripts/screenshot.sh" "$out/penny_ms_ridges_full.png" -- "$out/penny_shaded.ply" "$out/penny_ms_ridges.obj" "$out/penny_ms_valleys.obj"
-"$here/scripts/screenshot.sh" "$out/penny_ms_relief_full.png" -- "$out/penny_shaded.ply" "$out/penny_ms_relief.obj"
-for what in ms_ridges ms_relief; do
-  convert "$out/penny_${what}_full.png" -crop 700x640+75+140 +repage "$here/docs/img/scan_penny_${what}.png"
+source "$here/scripts/picture-helpers.sh"
+img="$here/docs/img"
+for name in penny fertility bunny; do
+  src="$out/$name.ply"
+  case "$name" in penny) src="$here/examples/data/penny.ply" ;; bunny) src="$out/stanford-bunny.ply" ;; esac
+  [ -f "$out/${name}_shaded.ply" ] || { echo "missing $out/${name}_shaded.ply: run scripts/make-doc-pictures.sh" >&2; exit 1; }
+  "$here/scripts/meshlabserver" -i "$src" -o "$out/${name}_ms_ridges.obj" -l 1 -o "$out/${name}_ms_valleys.obj" -l 2 \
+    -o "$out/${name}_ms_relief.obj" -l 3 -s "$here/examples/multiscale.mlx" >"$out/${name}_multiscale.log" 2>&1
+  "$here/scripts/screenshot.sh" "$out/${name}_ms_ridges_full.png" -- "$out/${name}_shaded.ply" \
+    "$out/${name}_ms_ridges.obj" "$out/${name}_ms_valleys.obj"
+  "$here/scripts/screenshot.sh" "$out/${name}_ms_relief_full.png" -- "$out/${name}_shaded.ply" "$out/${name}_ms_relief.obj"
+  for what in ms_ridges ms_relief; do
+    convert "$out/${name}_${what}_full.png" -crop 700x640+75+140 +repage "$img/scan_${name}_${what}.png"
+  done
+  for what in relief ridges; do
+    cp "$img/scan_${name}_${what}.png" "$out/single.png"; label "$out/single.png" "single scale (defaults)"
+    cp "$img/scan_${name}_ms_${what}.png" "$out/multi.png"; label "$out/multi.png" "multi-scale (defaults)"
+    convert "$out/single.png" "$out/multi.png" +append -resize 50% "$img/scan_${name}_pair_${what}.png"
+  done
+  grep -E "Optimal scale|Multi-scale" "$out/${name}_multiscale.log" | sed 's/^LOG: [0-9]* //' || true
 done
-# The statuette and the bunny (made by make-doc-pictures.sh): multi-scale relief edges at defaults.
-for m in fertility bunny; do
-  src="$out/$m.ply"; [ "$m" = bunny ] && src="$out/stanford-bunny.ply"
-  "$here/scripts/meshlabserver" -i "$src" -o "$out/${m}_ms_relief.obj" -l 3 -s "$here/examples/multiscale.mlx" \
-    >"$out/${m}_multiscale.log" 2>&1
-  "$here/scripts/screenshot.sh" "$out/${m}_ms_relief_full.png" -- "$out/${m}_shaded.ply" "$out/${m}_ms_relief.obj"
-  convert "$out/${m}_ms_relief_full.png" -crop 700x640+75+140 +repage "$here/docs/img/scan_${m}_ms_relief.png"
-done
-grep -E "Optimal scale|Multi-scale" "$out/penny_multiscale.log" | sed 's/^LOG: [0-9]* //' || true
-echo "pictures in docs/img/scan_penny_ms_*.png"
+echo "pictures in docs/img/scan_*_ms_*.png and scan_*_pair_*.png"

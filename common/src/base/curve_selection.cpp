@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <tuple>
+#include <unordered_map>
 
 namespace reliefkit {
 
@@ -191,6 +192,78 @@ Polylines hysteresis(const Polylines& all, const std::vector<char>& strong, cons
       }
     }
   return select_segments(all, keep);
+}
+
+namespace {
+
+Vec3 segment_midpoint(const Polylines& p, size_t k) {
+  return 0.5 * (p.points[p.segments[k][0]] + p.points[p.segments[k][1]]);
+}
+
+double distance_to_segment(const Vec3& x, const Vec3& a, const Vec3& b) {
+  const Vec3 d = b - a;
+  const double len2 = d.squaredNorm();
+  const double t = len2 > 0 ? std::clamp((x - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * d - x).norm();
+}
+
+// The segments of a curve set filed by their midpoints in a uniform grid whose cells are at least
+// twice the query radius and the longest segment: every segment within the radius of a point is
+// in the point's cell or a neighbouring one.
+class SegmentGrid {
+ public:
+  SegmentGrid(const Polylines& p, double radius) : p_(p), radius_(radius), cell_(2 * radius) {
+    for (const auto& s : p.segments) cell_ = std::max(cell_, (p.points[s[1]] - p.points[s[0]]).norm());
+    for (size_t k = 0; k < p.segments.size(); ++k) cells_[key(cell_of(segment_midpoint(p, k)))].push_back(int(k));
+  }
+  bool near(const Vec3& x) const {
+    const std::array<long, 3> c = cell_of(x);
+    for (long i = c[0] - 1; i <= c[0] + 1; ++i)
+      for (long j = c[1] - 1; j <= c[1] + 1; ++j)
+        for (long k = c[2] - 1; k <= c[2] + 1; ++k) {
+          const auto it = cells_.find(key({i, j, k}));
+          if (it == cells_.end()) continue;
+          for (int s : it->second)
+            if (distance_to_segment(x, p_.points[p_.segments[s][0]], p_.points[p_.segments[s][1]]) <= radius_)
+              return true;
+        }
+    return false;
+  }
+
+ private:
+  std::array<long, 3> cell_of(const Vec3& x) const {
+    return {long(std::floor(x.x() / cell_)), long(std::floor(x.y() / cell_)), long(std::floor(x.z() / cell_))};
+  }
+  static std::uint64_t key(const std::array<long, 3>& c) {
+    auto bits = [](long v) { return static_cast<std::uint64_t>(v) & 0x1fffffu; };
+    return (bits(c[0]) << 42) | (bits(c[1]) << 21) | bits(c[2]);
+  }
+  const Polylines& p_;
+  double radius_, cell_;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+};
+
+}  // namespace
+
+std::vector<char> segments_near(const Polylines& curves, const Polylines& others, double radius) {
+  std::vector<char> near(curves.segments.size(), 0);
+  if (others.segments.empty() || !(radius > 0)) return near;
+  const SegmentGrid grid(others, radius);
+  const long n = static_cast<long>(curves.segments.size());
+#pragma omp parallel for schedule(dynamic, 1024)
+  for (long k = 0; k < n; ++k) near[k] = grid.near(segment_midpoint(curves, size_t(k)));
+  return near;
+}
+
+void append_curves(Polylines& curves, const Polylines& more) {
+  const int offset = static_cast<int>(curves.points.size());
+  curves.points.insert(curves.points.end(), more.points.begin(), more.points.end());
+  curves.strength.insert(curves.strength.end(), more.strength.begin(), more.strength.end());
+  curves.point_edge.insert(curves.point_edge.end(), more.point_edge.begin(), more.point_edge.end());
+  curves.point_weight.insert(curves.point_weight.end(), more.point_weight.begin(), more.point_weight.end());
+  for (const auto& s : more.segments) curves.segments.push_back({s[0] + offset, s[1] + offset});
+  curves.segment_face.insert(curves.segment_face.end(), more.segment_face.begin(), more.segment_face.end());
+  curves.rejected_faces += more.rejected_faces;
 }
 
 }  // namespace reliefkit

@@ -60,6 +60,9 @@ Surface optimally_smoothed(const Surface& surface, OptimalScaleOptions& opt, Opt
 MultiscaleRidgeValleys multiscale_ridges_valleys(const Surface& surface, OptimalScaleOptions opt,
                                                  RidgeValleyParams params) {
   params.validate();
+  params.weak_ratio = kConnectingWeakRatio;
+  params.link_gap_edges = kConnectingGapEdges;
+  const RidgeValleyParams finest = params;
   opt.curve = ScaleStrength::RidgesValleys;
   MultiscaleRidgeValleys r;
   const Surface smoothed_surface = optimally_smoothed(surface, opt, r.scale);
@@ -96,13 +99,14 @@ MultiscaleRidgeValleys multiscale_ridges_valleys(const Surface& surface, Optimal
     // already the noise's 99th percentile.
     const double threshold =
         params.relative_threshold * automatic_curve_threshold(kCurveNoise * r.scale.strength_floor / kNoiseFactor, seg);
-    Polylines kept = drop_short_chains(keep_strong_segments(all, threshold), c.min_length);
+    Polylines kept = select_ridge_lines(all, threshold, params, r.scale.scale.edge, c.min_length);
     place_on_mesh(surface.mesh(), kept);
     (valleys ? c.valleys : c.ridges) = std::move(kept);
     (valleys ? c.valley_threshold : c.ridge_threshold) = threshold;
     (valleys ? c.strongest_valley : c.strongest_ridge) = strongest;
   }
   r.scale.smoothed = smoothed.vertices;
+  add_finest_scale_lines(surface, finest, r.scale, r.curves);
   return r;
 }
 
@@ -135,6 +139,55 @@ std::vector<double> noise_tilt_at_scales(const OptimalScale& s, double final_smo
   return tilt;
 }
 
+void add_other_scale(Polylines& curves, const Polylines& other, OtherScale side, const OptimalScale& scale,
+                     double min_length) {
+  const double h = scale.scale.edge;
+  std::vector<char> add = segments_near(other, curves, kSameEdgeEdges * h);
+  for (size_t k = 0; k < add.size(); ++k) {
+    const auto [a, b] = other.point_edge[other.segments[k][0]];
+    // The finest reading only where a fine scale was selected; the optimal scale's everywhere.
+    const bool fine = std::min(scale.sigma[a], scale.sigma[b]) <= kFineScaleEdges * h;
+    add[k] = !add[k] && (fine || side == OtherScale::Wider);
+  }
+  append_curves(curves, drop_short_chains(select_segments(other, add), min_length));
+}
+
+void add_finest_scale_lines(const Surface& surface, RidgeValleyParams params, const OptimalScale& scale,
+                            RidgeValleyResult& multi) {
+  if (params.progress) params.progress(97, "Multi-scale ridges and valleys: the finest significant scale");
+  params.progress = nullptr;
+  params.presmoothing = Length::automatic();
+  const RidgeValleyResult finest = compute_ridges_valleys(surface, params);
+  const double h = surface.scale().edge;
+  // The finest lines' strengths as the multi-scale ones' ((σ / h)² |k| h, γ = 1), σ their
+  // pre-smoothing, at least the smallest scale of the range.
+  const double sigma = std::max(finest.presmoothing, scale.levels.front()) / h;
+  for (bool valleys : {false, true}) {
+    Polylines lines = valleys ? finest.valleys : finest.ridges;
+    for (double& x : lines.strength) x *= sigma * sigma * h;
+    Polylines& wider = valleys ? multi.valleys : multi.ridges;
+    add_other_scale(lines, wider, OtherScale::Wider, scale, multi.min_length);
+    wider = std::move(lines);
+  }
+}
+
+void add_finest_scale_edges(const Surface& surface, ReliefEdgeParams params, const OptimalScale& scale,
+                            ReliefEdgeResult& multi) {
+  if (params.progress) params.progress(97, "Multi-scale relief edges: the finest significant scale");
+  params.progress = nullptr;
+  params.presmoothing = Length::automatic();
+  // The scan's noise tilt measured on the run's noise patch (when it carries the scan's noise).
+  ReliefEdgeGuidance guidance;
+  const int cells = noise_patch_cells(surface.mesh().n_faces());
+  const double noise = surface.noise().relative;
+  const std::optional<Surface> patch =
+      noise > 0 && std::isfinite(noise) ? std::optional<Surface>(scale.noise_patch.carrying(noise, cells)) : std::nullopt;
+  guidance.noise_patch = patch ? &*patch : nullptr;
+  guidance.noise_patch_cells = cells;
+  add_other_scale(multi.edges, compute_relief_edges(surface, params, guidance).edges, OtherScale::Finest, scale,
+                  multi.min_length);
+}
+
 MultiscaleReliefEdges multiscale_relief_edges(const Surface& surface, OptimalScaleOptions opt,
                                               ReliefEdgeParams params) {
   params.validate();
@@ -155,6 +208,7 @@ MultiscaleReliefEdges multiscale_relief_edges(const Surface& surface, OptimalSca
   // - the fit-error radius: kFitRadiusWidths x the vertex's scale (a soft step read at 10 edge
   //   lengths does not fit within the fine features' 4);
   // - only crossings where the slope is steepest (a soft footprint's flat wiggles crossed too).
+  const ReliefEdgeParams finest = params;
   params.presmoothing = Length::in_edges(0);
   ReliefEdgeGuidance guidance;
   guidance.base_normals = r.scale.base_normal;
@@ -167,6 +221,7 @@ MultiscaleReliefEdges multiscale_relief_edges(const Surface& surface, OptimalSca
   r.noise_angle = r.curves.noise_angle;
   place_on_mesh(mesh, r.curves.edges);
   r.scale.smoothed = smoothed.mesh().vertices;
+  add_finest_scale_edges(surface, finest, r.scale, r.curves);
   return r;
 }
 

@@ -222,6 +222,8 @@ std::vector<double> crossing_noise(const Polylines& all, const ReliefEdgeGuidanc
 // The least tilt noise gives: the smallest of the guidance's per-vertex tilts (reported; each
 // point has its own), else that of the estimated noise after the run's pre-smoothing.
 double least_noise_tilt(const TriMesh& mesh, const ReliefEdgeFields& r, const ReliefEdgeGuidance& guide) {
+  if (guide.noise_tilt.empty() && guide.noise_patch && r.noise.relative > 0 && std::isfinite(r.noise.relative))
+    return noise_tilt(*guide.noise_patch, guide.noise_patch_cells, r.presmoothing / r.scale.edge);
   if (guide.noise_tilt.empty())
     return noise_tilt(r.noise, r.presmoothing / r.scale.edge, noise_patch_cells(mesh.n_faces()));
   double least = 0;

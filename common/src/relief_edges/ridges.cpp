@@ -43,6 +43,21 @@ void RidgeValleyParams::validate() const {
   presmoothing.check("Pre-smoothing", 0, 100);
   require_range(relative_threshold, "Strength threshold", 0, 1000);
   require_range(min_length_edges, "Minimum curve length (edge lengths)", 0, 1e6);
+  require_range(weak_ratio, "Weak line ratio", 0, 1);
+  require_range(link_gap_edges, "Bridge gaps up to", 0, 20);
+}
+
+Polylines select_ridge_lines(const Polylines& all, double threshold, const RidgeValleyParams& p, double edge,
+                             double min_length) {
+  std::vector<char> strong(all.segments.size()), weak(all.segments.size());
+  for (size_t k = 0; k < all.segments.size(); ++k) {
+    const double s = 0.5 * (all.strength[all.segments[k][0]] + all.strength[all.segments[k][1]]);
+    strong[k] = s >= threshold;
+    weak[k] = s >= p.weak_ratio * threshold;
+  }
+  Polylines kept = p.weak_ratio < 1 ? hysteresis(all, strong, weak) : select_segments(all, strong);
+  if (p.link_gap_edges > 0) link_gaps(kept, p.link_gap_edges * edge, kLinkTurn);
+  return drop_short_chains(kept, min_length);
 }
 
 RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyParams& p) {
@@ -72,14 +87,15 @@ RidgeValleyResult compute_ridges_valleys(const Surface& surface, const RidgeVall
   };
   const double noise_r = noise_scale(kmax), noise_v = noise_scale(kmin);
   std::vector<double> str_r, str_v;
-  Polylines cand_r = ridge_lines(mesh, r.curvature, false, p.relative_threshold * kNoiseFactor * noise_r, &str_r);
-  Polylines cand_v = ridge_lines(mesh, r.curvature, true, p.relative_threshold * kNoiseFactor * noise_v, &str_v);
+  const double floor = p.weak_ratio * p.relative_threshold * kNoiseFactor;
+  Polylines cand_r = ridge_lines(mesh, r.curvature, false, floor * noise_r, &str_r);
+  Polylines cand_v = ridge_lines(mesh, r.curvature, true, floor * noise_v, &str_v);
   for (double x : str_r) r.strongest_ridge = std::max(r.strongest_ridge, x);
   for (double x : str_v) r.strongest_valley = std::max(r.strongest_valley, x);
   r.ridge_threshold = p.relative_threshold * automatic_curve_threshold(noise_r, std::move(str_r));
   r.valley_threshold = p.relative_threshold * automatic_curve_threshold(noise_v, std::move(str_v));
-  r.ridges = drop_short_chains(keep_strong_segments(cand_r, r.ridge_threshold), r.min_length);
-  r.valleys = drop_short_chains(keep_strong_segments(cand_v, r.valley_threshold), r.min_length);
+  r.ridges = select_ridge_lines(cand_r, r.ridge_threshold, p, r.scale.edge, r.min_length);
+  r.valleys = select_ridge_lines(cand_v, r.valley_threshold, p, r.scale.edge, r.min_length);
   return r;
 }
 

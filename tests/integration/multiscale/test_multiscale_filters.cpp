@@ -33,7 +33,7 @@ std::string smoothed_filter() {
 }
 std::string ridges_filter() {
   return mlx_filter("Multi-scale Ridges and Valleys",
-                    with(with({param_float("threshold", 1), param_float("min_length", 4)}, scale_range()),
+                    with(with({param_float("threshold", 1), param_float("min_length", reliefkit::kMultiscaleMinLengthEdges)}, scale_range()),
                          {param_float("lift", 0)}));
 }
 std::string relief_filter() {
@@ -182,7 +182,7 @@ TEST(MultiscaleFilters, BadParametersStopWithAClearMessage) {
                                             param_bool("quality", true)}),
        "Curves the scale is for"},
       {mlx_filter("Multi-scale Ridges and Valleys",
-                  with(with({param_float("threshold", std::nan("")), param_float("min_length", 4)}, scale_range()),
+                  with(with({param_float("threshold", std::nan("")), param_float("min_length", reliefkit::kMultiscaleMinLengthEdges)}, scale_range()),
                        {param_float("lift", 0)})),
        "Strength threshold"},
       {mlx_filter("Multi-scale Relief Edges", {param_float("min_length", 2), param_float("gap", 3),

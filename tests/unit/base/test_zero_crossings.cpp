@@ -145,3 +145,42 @@ TEST(LinkGaps, JoinsEndsThatFaceEachOtherOnly) {
   piece({{4, 0, 0}, {5, 0, 0}});
   EXPECT_EQ(link_gaps(c, 2.5, 0.785), 0);
 }
+
+namespace {
+// A straight polyline from `from` to `to` in `n` segments, every point of strength 1.
+Polylines straight(const Vec3& from, const Vec3& to, int n) {
+  Polylines c;
+  for (int i = 0; i <= n; ++i) {
+    c.points.push_back(from + (to - from) * (double(i) / n));
+    c.strength.push_back(1);
+    c.point_edge.push_back({i, i + 1});
+    c.point_weight.push_back(0.5);
+  }
+  for (int i = 0; i < n; ++i) c.segments.push_back({i, i + 1}), c.segment_face.push_back(i);
+  return c;
+}
+}  // namespace
+
+// Which segments of one curve set lie within a radius of another's, including when the other's
+// segments are far longer than the radius (a decimated mesh's long faces).
+TEST(CurveProximity, SegmentsNearFindsThoseWithinTheRadius) {
+  const Polylines base = straight({0, 0, 0}, {40, 0, 0}, 40), one_long = straight({0, 0, 0}, {40, 0, 0}, 1);
+  const Polylines inside = straight({0, 1.5, 0}, {40, 1.5, 0}, 80), outside = straight({0, 2.5, 0}, {40, 2.5, 0}, 80);
+  for (const Polylines* by : {&base, &one_long}) {
+    for (char k : segments_near(inside, *by, 2.0)) EXPECT_EQ(k, 1);
+    for (char k : segments_near(outside, *by, 2.0)) EXPECT_EQ(k, 0);
+  }
+  EXPECT_EQ(segments_near(inside, Polylines{}, 2.0), std::vector<char>(80, 0));
+}
+
+TEST(CurveProximity, AppendedCurvesKeepTheirOwnPoints) {
+  Polylines c = straight({0, 0, 0}, {1, 0, 0}, 2);
+  append_curves(c, straight({0, 5, 0}, {1, 5, 0}, 3));
+  ASSERT_EQ(c.points.size(), 7u);
+  ASSERT_EQ(c.segments.size(), 5u);
+  EXPECT_EQ(c.point_edge.size(), 7u);
+  EXPECT_EQ(c.segments[2][0], 3);  // the appended line's first segment starts at its own first point
+  EXPECT_DOUBLE_EQ(c.points[c.segments[4][1]].y(), 5.0);
+  EXPECT_EQ(c.chains().size(), 2u);
+  EXPECT_NEAR(c.total_length(), 2.0, 1e-12);
+}

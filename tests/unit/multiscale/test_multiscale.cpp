@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <string>
 
+#include "reliefkit/base/curve_selection.h"
 #include "reliefkit/base/work_counts.h"
 #include "reliefkit/multiscale/multiscale.h"
 #include "reliefs.h"
@@ -279,4 +280,36 @@ TEST(Multiscale, CurveStrengthIsNormalisedAtTheSmallerScaleOfItsEdge) {
   EXPECT_NEAR(c.strength[1], 3.0 * 36 * 0.01, 1e-12);
   EXPECT_NEAR(c2.strength[0], 3.0 * 2 * 1e-4, 1e-15);
   EXPECT_NEAR(c2.strength[1], 3.0 * 6 * 1e-4, 1e-15);
+}
+
+// How the two readings join (add_other_scale): a curve of the other reading within
+// kSameEdgeEdges of one already drawn is the same feature; the finest reading's curves come in
+// only where the optimal scale is fine, the optimal scale's anywhere.
+TEST(Multiscale, ReadingsJoinWhereEachScaleIsMeant) {
+  OptimalScale scale;
+  scale.scale.edge = 1;
+  // Vertices 0-9: a fine scale; 10-19: a wide one.
+  scale.sigma.assign(20, 0.5 * kFineScaleEdges);
+  for (int v = 10; v < 20; ++v) scale.sigma[v] = 2 * kFineScaleEdges;
+  auto piece = [](double y, int first_vertex) {
+    Polylines c;
+    for (int i = 0; i <= 10; ++i) {
+      c.points.push_back({double(i), y, 0});
+      c.strength.push_back(1);
+      c.point_edge.push_back({first_vertex + i % 9, first_vertex + i % 9 + 1});
+      c.point_weight.push_back(0.5);
+    }
+    for (int i = 0; i < 10; ++i) c.segments.push_back({i, i + 1}), c.segment_face.push_back(0);
+    return c;
+  };
+  const Polylines drawn = piece(0, 0);
+  Polylines other = piece(0.5 * kSameEdgeEdges, 0);     // the same feature
+  append_curves(other, piece(10, 0));                   // a fine-scale area's own curve
+  append_curves(other, piece(20, 10));                  // a wide-scale area's own curve
+  Polylines with_finest = drawn;
+  add_other_scale(with_finest, other, OtherScale::Finest, scale, 0);
+  EXPECT_NEAR(with_finest.total_length(), 20, 1e-9);    // drawn + the fine area's
+  Polylines with_wider = drawn;
+  add_other_scale(with_wider, other, OtherScale::Wider, scale, 0);
+  EXPECT_NEAR(with_wider.total_length(), 30, 1e-9);     // drawn + both areas' own curves
 }

@@ -1,6 +1,7 @@
 // Relief edges (thesis ch. 4), base normals, and ridges & valleys.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -304,4 +305,31 @@ TEST(ReliefEdgeGuidance, GivenBaseReplacesTheEstimateAndWrongSizesAreRefused) {
   wrong.noise_tilt.assign(nv - 1, 0.1);
   EXPECT_THROW(compute_relief_edge_fields(surface, p, wrong), std::invalid_argument);
   EXPECT_THROW(relief_edge_crossings(surface, plain, wrong), std::invalid_argument);
+}
+
+// The multi-scale filter's connecting rules for ridge lines (select_ridge_lines): a line that
+// weakens to 0.6 of the threshold for a few segments, and a second piece across a gap of 3.
+TEST(RidgesValleys, WeakStretchesAndSmallGapsJoinTheLines) {
+  Polylines all;
+  auto line = [&all](double x0, int n, std::vector<int> weak_points) {
+    const int base = static_cast<int>(all.points.size());
+    for (int i = 0; i <= n; ++i) {
+      all.points.push_back({x0 + i, 0, 0});
+      all.strength.push_back(std::count(weak_points.begin(), weak_points.end(), i) ? 0.6 : 1.0);
+    }
+    for (int i = 0; i < n; ++i) all.segments.push_back({base + i, base + i + 1}), all.segment_face.push_back(0);
+  };
+  line(0, 20, {9, 10, 11});
+  line(23, 10, {});
+  RidgeValleyParams thresholds_only;  // weak_ratio 1, no gap bridging: the line breaks at 8 and 8
+  EXPECT_NEAR(select_ridge_lines(all, 1.0, thresholds_only, 1.0, 9.0).total_length(), 10.0, 1e-9);
+  RidgeValleyParams connecting;
+  connecting.weak_ratio = 0.5;
+  const Polylines joined = select_ridge_lines(all, 1.0, connecting, 1.0, 9.0);
+  EXPECT_NEAR(joined.total_length(), 30.0, 1e-9);
+  EXPECT_EQ(joined.chains().size(), 2u);
+  connecting.link_gap_edges = 4;
+  const Polylines bridged = select_ridge_lines(all, 1.0, connecting, 1.0, 9.0);
+  EXPECT_NEAR(bridged.total_length(), 33.0, 1e-9);
+  EXPECT_EQ(bridged.chains().size(), 1u);
 }

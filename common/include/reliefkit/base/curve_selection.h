@@ -42,6 +42,8 @@ Polylines keep_strong_segments(const Polylines& curves, double min_strength);
 /// closed onto itself unless it is longer than 4 x max_gap. The new segments take the strength
 /// of their ends and the face of the first end's segment. Returns how many links were made.
 int link_gaps(Polylines& curves, double max_gap, double max_turn);
+/// The curve filters' largest turn (radians) of a gap-bridging link against its ends' directions.
+constexpr double kLinkTurn = 0.78539816339744831;
 
 /// Keeps only the chains at least `min_length` long (removes isolated short fragments).
 Polylines drop_short_chains(const Polylines& curves, double min_length);
@@ -49,5 +51,12 @@ Polylines drop_short_chains(const Polylines& curves, double min_length);
 /// Two-threshold hysteresis on segments: the strong segments and every weak (or strong) segment
 /// connected to one through shared curve points are kept.
 Polylines hysteresis(const Polylines& all, const std::vector<char>& strong, const std::vector<char>& weak);
+
+/// Per segment of `curves`: 1 where its midpoint lies within `radius` (mesh units) of a segment of
+/// `others` (both on the same mesh).
+std::vector<char> segments_near(const Polylines& curves, const Polylines& others, double radius);
+
+/// Appends `more`'s points and segments to `curves`.
+void append_curves(Polylines& curves, const Polylines& more);
 
 }  // namespace reliefkit

@@ -71,6 +71,10 @@ struct ReliefEdgeGuidance {
   /// must tilt more, weak ones half as much, besides the global thresholds; the global noise
   /// tilt is then not applied.
   std::vector<double> noise_tilt;
+  /// Without noise_tilt: a noise patch of noise_patch_cells carrying the scan's estimated noise
+  /// (a run's, shared by its stages) to measure the noise tilt on instead of building one.
+  const Surface* noise_patch = nullptr;
+  int noise_patch_cells = 0;
   /// The width of the features (mesh units): the fit-error radius is at least kFitRadiusWidths x it.
   std::vector<double> feature_width;
   /// Keep only the crossings where the slope is steepest (G rising up the slope, g), not those
@@ -132,8 +136,6 @@ double noise_tilt(const Surface& patch, int patch_cells, double presmoothing_edg
 constexpr double kFitRadiusWidths = 2.4;
 constexpr double kBaseScaleWidths = 9.0;
 
-/// Largest turn (radians) a gap-bridging link may make against the directions of the two ends.
-constexpr double kLinkTurn = 0.78539816339744831;
 
 /// Steps 1-5: the per-vertex fields.
 ReliefEdgeFields compute_relief_edge_fields(const Surface& surface, const ReliefEdgeParams& params = {},

@@ -20,6 +20,11 @@ struct RidgeValleyParams {
   Length presmoothing = Length::automatic();  // automatic: from the noise level
   double relative_threshold = 1.0;   // x automatic threshold (automatic_curve_threshold)
   double min_length_edges = kDefaultMinLengthEdges;
+  /// Connecting the lines (the multi-scale filter's choice; 1 and 0 keep what the threshold cuts):
+  /// segments at least weak_ratio x the threshold are kept where they join one above it, and chain
+  /// ends facing each other across up to link_gap_edges edge lengths are joined.
+  double weak_ratio = 1.0;
+  double link_gap_edges = 0;
   Progress progress = nullptr;
   /// Throws InputError naming the first parameter out of its range.
   void validate() const;
@@ -37,6 +42,12 @@ struct RidgeValleyResult : ScaledCurvature {  // scale, noise, pre-smoothing use
 /// ZeroCrossingOptions::all_strengths).
 Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength,
                       std::vector<double>* all_strengths = nullptr);
+
+/// The lines kept of all candidate crossings (strengths per point): those above `threshold`, and
+/// with params.weak_ratio < 1 the weaker ones down to weak_ratio x it joined to them (hysteresis);
+/// gaps bridged (params.link_gap_edges); chains shorter than `min_length` (mesh units) dropped.
+Polylines select_ridge_lines(const Polylines& candidates, double threshold, const RidgeValleyParams& params,
+                             double edge, double min_length);
 
 RidgeValleyResult compute_ridges_valleys(const Surface& surface, const RidgeValleyParams& params = {});
 RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyParams& params = {});
