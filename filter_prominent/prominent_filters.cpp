@@ -42,9 +42,10 @@ const char* kEnhanceInfo =
     "prominent field says which way is across), then (2) an inverse-curvature flow along the prominent field, "
     "which steepens steps, moving every vertex along the base surface's normal; a vertex stops when it reaches "
     "the highest (lowest) point of its neighbourhood, so nothing rises above the relief's own top or sinks "
-    "below its ground, or when it has restored what its curvature says wear took (times <i>Enhancement "
-    "strength</i>). Set <i>Flow iterations</i> to 0 to denoise only (for reliefs that are smooth by design); "
-    "-1 stops automatically. ";
+    "below its ground, or when it has moved as far as the scan's noise could hide (at strength 1: the steps "
+    "come out no steeper than the scan supports) or restored what its curvature says wear took. Raise "
+    "<i>Enhancement strength</i> to restore worn steps beyond what the scan shows (about 12 for a step eroded "
+    "to five times its width). Set <i>Flow iterations</i> to 0 to denoise only; -1 stops automatically. ";
 
 const char* kColoringInfo =
     "Colours the surface in grey by its <b>curvature across the features</b> (the prominent field): convex "
@@ -184,8 +185,10 @@ void enhance_parameters(MeshModel&, RichParameterList& par) {
   par.addParam(RichFloat("flow_step", 0.2f, "Flow step",
                          "The largest move of a vertex per flow iteration, in edge lengths."));
   par.addParam(RichFloat("strength", 1.f, "Enhancement strength",
-                         "How far step 2 may move a vertex: 1 restores about what wear took from the corners of the "
-                         "relief (the height its curvature explains), 2 exaggerates twice that. No vertex ever passes "
+                         "How far step 2 may move a vertex. 1: as far as the scan's noise could hide (a third of its "
+                         "standard deviation) — sharper than the smoothed scan, no steeper than the scan supports. "
+                         "Larger values trade faithfulness for legibility: about 12 restores a worn step (steeper "
+                         "than the scan shows, an illustration rather than a measurement). No vertex ever passes "
                          "the highest or lowest point of its neighbourhood."));
   field_parameters(par);
 }

@@ -438,12 +438,18 @@ std::vector<double> flow_curvature(const TriMesh& current, const MeshTopology& t
 // away, no more — the height a parabola of that curvature gains over the stopping rule's radius
 // rho. Without it the flow cascaded (a shoulder that rose made its neighbour concave, which sank,
 // and so on) and terraced smooth bodies: creases and craters on the bunny and the statuette.
+// Nor more than the data supports: back to the scan where step 1 rounded it (`step_one`: its
+// move along the base normal, averaged over sigma_c, so that the noise it removed stays removed)
+// and beyond by kFlowNoiseMoves x the noise's standard deviation; further, the flow invents
+// relief (noisy steps came out twice as steep as the clean ones).
 // It moves only the way its curvature first pushed it (outwards where convex), so that a vertex
 // whose curvature flips as its neighbours move does not oscillate.
-void cap_heights(double strength, const std::vector<double>& kp, double rho, FlowState& s) {
+void cap_heights(double strength, const std::vector<double>& kp, double rho, double noise_sigma,
+                 const std::vector<double>& step_one, FlowState& s) {
   const double rho2 = rho * rho;
   for (size_t v = 0; v < kp.size(); ++v) {
-    const double cap = strength * 0.5 * std::abs(kp[v]) * rho2;
+    const double back_to_scan = std::max(0.0, kp[v] >= 0 ? -step_one[v] : step_one[v]);
+    const double cap = strength * std::min(0.5 * std::abs(kp[v]) * rho2, back_to_scan + kFlowNoiseMoves * noise_sigma);
     if (kp[v] >= 0) {
       s.lo[v] = 0;
       if (cap < s.hi[v]) s.hi[v] = cap, s.capped[v] = 1;
@@ -452,6 +458,15 @@ void cap_heights(double strength, const std::vector<double>& kp, double rho, Flo
       if (-cap > s.lo[v]) s.lo[v] = -cap, s.capped[v] = 2;
     }
   }
+}
+
+// Step 1's move along the base normal, averaged over sigma_c: what it rounded, not the noise.
+std::vector<double> step_one_move(const Surface& surface, const EnhanceResult& out) {
+  const std::vector<Vec3>& input = surface.mesh().vertices;
+  std::vector<double> move(input.size());
+  for (size_t v = 0; v < input.size(); ++v) move[v] = out.field.base.normal[v].dot(out.bilateral[v] - input[v]);
+  diffuse(surface.mesh(), surface.topology().ring, out.spatial_scale, move);
+  return move;
 }
 
 struct FlowMoves {
@@ -518,7 +533,7 @@ void inverse_curvature_flow(const Surface& surface, const EnhanceParams& p, Enha
         if (!s.stopped[v]) a.push_back(std::abs(kp[v]));
       kappa_ref = percentile(a, 0.9);
       if (!(kappa_ref > 0)) break;
-      cap_heights(p.strength, kp, out.extremum_radius, s);
+      cap_heights(p.strength, kp, out.extremum_radius, f.noise.sigma, step_one_move(surface, out), s);
     }
     const FlowMoves m = move_vertices(kp, kappa_ref, max_move, c.normal, s, out);
     out.flow_iterations = it + 1;

@@ -97,6 +97,13 @@ void solve_prominent_field(const Surface& surface, const std::vector<Vec3>& norm
 
 // ---- Enhancement (thesis 6.4) ----
 
+/// At strength 1 the flow moves a vertex back to the scan where step 1 rounded it (step 1's move
+/// averaged over sigma_c) and beyond by at most this many standard deviations of the scan's noise:
+/// what the noise could have hidden. On noisy copies of reliefs whose clean surface is known (steps
+/// 1 and 2.6 edge lengths wide, 10 and 20 % noise) the steepest slope is then 0.98-1.13 of the
+/// clean one's (unbounded: 1.44-2.06; 0.35 gave up to 1.18; docs/prominent.md).
+constexpr double kFlowNoiseMoves = 0.25;
+
 struct EnhanceParams {
   static constexpr double kDefaultSpatialEdges = 1.5;  // sigma_c, x edge length
   static constexpr int kDefaultBilateralIterations = 2;
@@ -108,9 +115,11 @@ struct EnhanceParams {
   int flow_iterations = -1;
   /// Largest move per flow iteration, x edge length.
   double flow_step = 0.2;
-  /// How far the flow may move a vertex, x the height its initial curvature kappa explains over
-  /// the stopping rule's radius rho (0.5 |kappa| rho^2): 1 restores about what rounding took from a
-  /// corner; larger exaggerates (the local height extremum still bounds every vertex).
+  /// How far the flow may move a vertex, x the lesser of what the data supports (back to the scan
+  /// where step 1 rounded it, then kFlowNoiseMoves x the noise's standard deviation) and the height
+  /// its initial curvature kappa explains over the stopping rule's radius rho (0.5 |kappa| rho^2). 1: no steeper than the scan supports (a noise-free scan is left as
+  /// step 1 makes it); about 12 restores what wear took from a step (steeper than the scan shows:
+  /// an illustration, not a measurement); the local height extremum still bounds every vertex.
   double strength = 1.0;
   /// Use the prominent term exp(-r_j^2 / 2 sigma_r^2) in the bilateral filter (off: Fleishman et al.).
   bool prominent_term = true;
