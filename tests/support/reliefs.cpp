@@ -98,6 +98,56 @@ Relief ring_on_sphere(const ReliefShape& s, int levels) {
   return r;
 }
 
+Relief outlines_on_plane(const ReliefShape& s, bool with_star, bool with_rectangle, int n) {
+  const Vec3 star_centre(-0.45, 0, 0), rect_centre(0.55, 0, 0);
+  // The star: a ten-sided polygon, points at radius 0.38, notches at 0.19.
+  std::vector<Vec3> star;
+  for (int k = 0; k < 10; ++k) {
+    const double a = M_PI / 2 + M_PI * k / 5, rad = k % 2 ? 0.19 : 0.38;
+    star.push_back(star_centre + Vec3(rad * std::cos(a), rad * std::sin(a), 0));
+  }
+  // Signed distances, positive inside: to the star's sides (inside by the crossing count) and to
+  // the rectangle (a box 0.15 x 0.35 grown by 0.1).
+  auto inside_star = [&](double x, double y) {
+    const Vec3 p(x, y, 0);
+    double d = 1e9;
+    bool in = false;
+    for (size_t k = 0; k < star.size(); ++k) {
+      const Vec3 &a = star[k], &b = star[(k + 1) % star.size()];
+      d = std::min(d, seg_dist(p, a, b));
+      if ((a.y() > y) != (b.y() > y) && x < a.x() + (y - a.y()) / (b.y() - a.y()) * (b.x() - a.x())) in = !in;
+    }
+    return in ? d : -d;
+  };
+  auto inside_rect = [&](double x, double y) {
+    const double qx = std::abs(x - rect_centre.x()) - 0.15, qy = std::abs(y - rect_centre.y()) - 0.35;
+    const double outside = std::hypot(std::max(qx, 0.0), std::max(qy, 0.0)) + std::min(std::max(qx, qy), 0.0);
+    return 0.1 - outside;
+  };
+  Relief r;
+  r.mesh = height_field([&](double x, double y) {
+    return s.height * std::max(with_star ? step(inside_star(x, y), s.width) : 0.0,
+                               with_rectangle ? step(inside_rect(x, y), s.width) : 0.0);
+  }, 1.0, n, s.jitter, s.seed);
+  r.base_normal.assign(r.mesh.vertices.size(), Vec3(0, 0, 1));
+  for (size_t k = 0; with_star && k < star.size(); ++k)
+    for (int i = 0; i < 400; ++i) r.boundary.push_back(star[k] + (star[(k + 1) % star.size()] - star[k]) * (i / 400.0) +
+                                                       Vec3(0, 0, 0.5 * s.height));
+  // The rectangle's outline: the point in each of 4000 directions from its centre (bisection).
+  for (int k = 0; with_rectangle && k < 4000; ++k) {
+    const double a = 2 * M_PI * k / 4000;
+    const Vec3 d(std::cos(a), std::sin(a), 0);
+    double lo = 0, hi = 1;
+    for (int it = 0; it < 50; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (inside_rect(rect_centre.x() + mid * d.x(), rect_centre.y() + mid * d.y()) > 0 ? lo : hi) = mid;
+    }
+    r.boundary.emplace_back(rect_centre.x() + lo * d.x(), rect_centre.y() + lo * d.y(), 0.5 * s.height);
+  }
+  finish(r, s);
+  return r;
+}
+
 Relief discs_on_cylinder(const ReliefShape& s, int nu, int nz) {
   const double R = 1, R1 = 0.4, R2 = 0.3;
   Relief r;

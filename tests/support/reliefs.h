@@ -42,6 +42,12 @@ Relief discs_on_cylinder_of_size(long faces, const ReliefShape& s);
 /// corners (superellipses of exponent 8), in the unrolled (arc length, z) coordinates.
 Relief squares_on_cylinder(const ReliefShape& s);
 
+/// On the plane [-1, 1]^2 (n x n cells): a five-pointed star (points at radius 0.38, notches at
+/// 0.19, sharp corners) around (-0.45, 0) and a rectangle 0.5 x 0.9 with corners rounded to 0.1
+/// around (0.55, 0), either or both raised by s.height, the step across the signed distance to
+/// each outline.
+Relief outlines_on_plane(const ReliefShape& s, bool with_star, bool with_rectangle, int n = 200);
+
 struct Detection {
   double recall;     // fraction of the boundary with a curve within the tolerance
   double precision;  // fraction of the curve length within the tolerance of the boundary
