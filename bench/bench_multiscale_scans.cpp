@@ -97,12 +97,7 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string path = argv[i], name = path.substr(path.find_last_of('/') + 1);
     TriMesh m;
-    try {
-      m = rktest::read_mesh(path).mesh;
-    } catch (const std::exception& e) {
-      std::printf("%s: not read (%s)\n", path.c_str(), e.what());
-      continue;
-    }
+    if (!rkbench::read_scan(path, m)) continue;
     const Surface surface = Surface::borrow(m);
     relief_edges_row(name, surface);
     ridges_row(name, surface);

@@ -60,12 +60,7 @@ int main(int argc, char** argv) {
               "length/e", "<10e", "noise", "smooth");
   for (const auto& path : scans) {
     TriMesh m;
-    try {
-      m = rktest::read_mesh(path).mesh;
-    } catch (const std::exception& e) {
-      std::printf("%s: not read (%s)\n", path.c_str(), e.what());
-      continue;
-    }
+    if (!rkbench::read_scan(path, m)) continue;
     const std::string name = path.substr(path.find_last_of('/') + 1);
     double t0 = rkbench::now();
     DemarcatingResult d = compute_demarcating(m);

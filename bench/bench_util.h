@@ -3,6 +3,7 @@
 #pragma once
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -11,7 +12,20 @@
 #include <string>
 #include <vector>
 
+#include "mesh_files.h"
+
 namespace rkbench {
+
+/// Reads a scan for a benchmark; says so and returns false when it cannot.
+inline bool read_scan(const std::string& path, reliefkit::TriMesh& mesh) {
+  try {
+    mesh = rktest::read_mesh(path).mesh;
+    return true;
+  } catch (const std::exception& e) {
+    std::printf("%s: not read (%s)\n", path.c_str(), e.what());
+    return false;
+  }
+}
 
 inline double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
