@@ -20,9 +20,11 @@ struct Block {
 };
 
 // (M + Δτ K) D = -Δτ (K X_unknown + K_known X_known): the displacement over one step. A keeps K's
-// structure (every row holds its diagonal); only its values change from step to step.
+// structure (every row holds its diagonal); only its values change from step to step. D comes in
+// as the guess (the previous step's displacement, scaled to this step's length) and goes out as
+// this step's.
 SolveReport step(const Block& b, double dtau, Eigen::SparseMatrix<double>& A, const std::vector<int>& diagonal,
-                 std::vector<Vec3>& x, const ScaleSpaceOptions& opt) {
+                 std::vector<Vec3>& x, Eigen::MatrixXd& D, const ScaleSpaceOptions& opt) {
   const int n = static_cast<int>(b.vertex.size());
   if (n == 0) return {};
   const Eigen::Index nnz = b.K.nonZeros();
@@ -44,7 +46,6 @@ SolveReport step(const Block& b, double dtau, Eigen::SparseMatrix<double>& A, co
   so.tolerance = opt.tolerance;
   so.prefer_direct = predicted_cg_iterations(A, b.mass) > kDirectAboveIterations;
   so.label = "Scale space";
-  Eigen::MatrixXd D;
   SolveReport rep = solve_spd(A, B, D, so);
   for (int i = 0; i < n; ++i) x[b.vertex[i]] += D.row(i).transpose();
   return rep;
@@ -167,9 +168,12 @@ class Diffusion {
       return;
     }
     for (int s = 0; s < steps; ++s) {
+      if (last_dtau_ > 0) inner_D_ *= dtau / last_dtau_, loop_D_ *= dtau / last_dtau_;
+      last_dtau_ = dtau;
       for (int which = 0; which < 2; ++which) {  // the loop first: the interior takes it as known
         const Block& b = which == 0 ? loop_ : inner_;
-        SolveReport rep = step(b, dtau, which == 0 ? loop_A_ : inner_A_, which == 0 ? loop_diag_ : inner_diag_, x, opt);
+        SolveReport rep = step(b, dtau, which == 0 ? loop_A_ : inner_A_, which == 0 ? loop_diag_ : inner_diag_, x,
+                               which == 0 ? loop_D_ : inner_D_, opt);
         if (b.vertex.empty()) continue;
         report.converged = report.converged && rep.converged;
         report.solves.push_back(std::move(rep));
@@ -237,6 +241,8 @@ class Diffusion {
   std::vector<int> inner_diag_, loop_diag_;
   double bound_ = 0, stiff_ = 0;
   std::vector<Vec3> scratch_;
+  Eigen::MatrixXd inner_D_, loop_D_;  // the last implicit step's displacements (the next one's guess)
+  double last_dtau_ = 0;
 };
 
 }  // namespace

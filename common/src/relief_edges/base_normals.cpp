@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "reliefkit/base/curvature.h"
 #include "reliefkit/base/laplacian.h"
@@ -15,6 +16,20 @@ double automatic_base_scale(const MeshScale& s) {
 }
 
 double default_base_scale(const TriMesh& mesh) { return automatic_base_scale(mesh_scale(mesh)); }
+
+namespace {
+
+// The median of the positive vertex areas (1 when there is none).
+double typical_area(const Eigen::VectorXd& mass) {
+  std::vector<double> positive;
+  for (Eigen::Index v = 0; v < mass.size(); ++v)
+    if (mass[v] > 0) positive.push_back(mass[v]);
+  if (positive.empty()) return 1.0;
+  std::nth_element(positive.begin(), positive.begin() + positive.size() / 2, positive.end());
+  return positive[positive.size() / 2];
+}
+
+}  // namespace
 
 
 BaseNormals estimate_base_normals(const TriMesh& mesh, const std::vector<Vec3>& n0, const BaseNormalOptions& opt) {
@@ -33,7 +48,11 @@ BaseNormals estimate_base_normals(const Surface& surface, const std::vector<Vec3
   lo.clamp_negative = true;
   LaplacianResult lap = surface.laplacian(lo);  // a copy: A is built in place below
   // A = M - t L. A vertex without area (isolated, or only in degenerate faces) has no coupling
-  // either: its row becomes the identity and it keeps its own normal.
+  // either: its row becomes the identity times the median vertex area and it keeps its own normal.
+  // (With 1 in place of a typical area, the 1,113 unreferenced vertices of the Stanford bunny
+  // made up almost all of the right-hand side's norm, and a relative residual of 1e-3 left the
+  // surface's base normals 6.6 deg (median), up to 122 deg, from the exact solve.)
+  const double no_area_weight = typical_area(lap.mass);
   Eigen::SparseMatrix<double>& A = lap.L;
   A *= -t;
 #pragma omp parallel for schedule(static)
@@ -44,14 +63,14 @@ BaseNormals estimate_base_normals(const Surface& surface, const std::vector<Vec3
     if (lap.mass[v] > 0) {
       d += lap.mass[v];
     } else {
-      d = 1.0;
+      d = no_area_weight;
     }
   }
   Eigen::MatrixXd B(nv, 3), X(nv, 3);
   for (int v = 0; v < nv; ++v) {
     const Vec3 n = n0[v].allFinite() ? n0[v] : Vec3(0, 0, 1);
     X.row(v) = n.transpose();
-    B.row(v) = (lap.mass[v] > 0 ? lap.mass[v] : 1.0) * n.transpose();
+    B.row(v) = (lap.mass[v] > 0 ? lap.mass[v] : no_area_weight) * n.transpose();
   }
   BaseNormals out;
   out.expected_iterations = predicted_cg_iterations(A, lap.mass);

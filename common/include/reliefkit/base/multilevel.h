@@ -64,4 +64,11 @@ std::vector<int> aggregate_vertices(const Eigen::SparseMatrix<double>& A, int& c
 int preconditioned_cg(const MultilevelPreconditioner& preconditioner, const Eigen::MatrixXd& B, Eigen::MatrixXd& X,
                       double tolerance, int max_iterations);
 
+/// The same with the Jacobi preconditioner (A's inverse diagonal) for the well-conditioned systems
+/// (short heat steps): every loop on every core and the matrix read once per iteration for three
+/// columns, where Eigen's ConjugateGradient solves column after column with its vector updates on
+/// one core. A: SPD, both triangles stored.
+int jacobi_cg(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& X, double tolerance,
+              int max_iterations);
+
 }  // namespace reliefkit
