@@ -186,24 +186,58 @@ class Diffusion {
   enum Kind : char { kInterior, kLoop, kFixed };
 
   // Interior block: K = -L restricted; the weights towards loop and fixed vertices are known terms.
+  // Every level's Laplacian has the first one's pattern (the mesh's rings): the pattern is built
+  // once, later levels only write their values into it.
   void assemble_interior(const LaplacianResult& lap) {
+    if (interior_slot_.size() != size_t(lap.L.nonZeros())) build_interior_pattern(lap);
     const int n = static_cast<int>(inner_.vertex.size());
-    std::vector<Eigen::Triplet<double>> trip;
     const Eigen::VectorXd old_mass = inner_.mass;
     inner_.mass.resize(n);
-    inner_.known.assign(size_t(n), {});
+    double* k = inner_.K.valuePtr();
+#pragma omp parallel for schedule(static)
     for (int i = 0; i < n; ++i) {
       const int v = inner_.vertex[i];
       // A vertex whose area vanished on the way keeps its last one (the system stays definite).
       inner_.mass[i] = lap.mass[v] > 0 ? lap.mass[v] : old_mass.size() == n ? old_mass[i] : initial_mass_[v];
-      for (Eigen::SparseMatrix<double>::InnerIterator it(lap.L, v); it; ++it) {
-        const int u = static_cast<int>(it.row());
-        if (kind_[u] == kInterior) trip.emplace_back(i, index_[u], -it.value());
-        else inner_.known[i].push_back({u, -it.value()});  // a stiffness entry, like the loop block's
+      for (int e = lap.L.outerIndexPtr()[v]; e < lap.L.outerIndexPtr()[v + 1]; ++e) {
+        const long slot = interior_slot_[size_t(e)];
+        if (slot >= 0) k[slot] = -lap.L.valuePtr()[e];
+        else inner_.known[i][size_t(-slot - 1)].second = -lap.L.valuePtr()[e];  // a stiffness entry, like the loop block's
       }
     }
+  }
+
+  // Where each entry of the Laplacian goes: a position in K's values, or (-1 - k) for the k-th
+  // known term of its row.
+  void build_interior_pattern(const LaplacianResult& lap) {
+    const int n = static_cast<int>(inner_.vertex.size());
+    std::vector<Eigen::Triplet<double>> trip;
+    inner_.known.assign(size_t(n), {});
+    for (int i = 0; i < n; ++i)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(lap.L, inner_.vertex[i]); it; ++it) {
+        const int u = static_cast<int>(it.row());
+        if (kind_[u] == kInterior) trip.emplace_back(i, index_[u], 1.0);
+        else inner_.known[i].push_back({u, 0.0});
+      }
     inner_.K.resize(n, n);
     inner_.K.setFromTriplets(trip.begin(), trip.end());
+    inner_.K.makeCompressed();
+    interior_slot_.assign(size_t(lap.L.nonZeros()), 0);
+    for (int i = 0; i < n; ++i) {
+      int known = 0;
+      const int v = inner_.vertex[i];
+      for (int e = lap.L.outerIndexPtr()[v]; e < lap.L.outerIndexPtr()[v + 1]; ++e) {
+        const int u = lap.L.innerIndexPtr()[e];
+        if (kind_[u] != kInterior) {
+          interior_slot_[size_t(e)] = -1 - known++;
+          continue;
+        }
+        const int column = index_[u];
+        const int* first = inner_.K.innerIndexPtr() + inner_.K.outerIndexPtr()[column];
+        const int* last = inner_.K.innerIndexPtr() + inner_.K.outerIndexPtr()[column + 1];
+        interior_slot_[size_t(e)] = std::lower_bound(first, last, i) - inner_.K.innerIndexPtr();
+      }
+    }
   }
 
   // Loop block: 1-D stiffness along the boundary polylines, weight 1 / edge length, mass half the
@@ -237,6 +271,7 @@ class Diffusion {
   std::vector<char> kind_;
   std::vector<int> index_;
   Block inner_, loop_;
+  std::vector<long> interior_slot_;  // per Laplacian entry: its place in inner_.K or inner_.known
   Eigen::SparseMatrix<double> inner_A_, loop_A_;
   std::vector<int> inner_diag_, loop_diag_;
   double bound_ = 0, stiff_ = 0;
