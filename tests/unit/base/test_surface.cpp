@@ -1,7 +1,12 @@
+#include "reliefkit/base/memory.h"
 // The per-run geometry context: computed once, shared by the stages, never stale after a change of
+#include "reliefkit/base/memory.h"
 // positions; the repair's adjacency is the one a fresh build gives.
+#include "reliefkit/base/memory.h"
 #include <gtest/gtest.h>
+#include "reliefkit/base/memory.h"
 
+#include "reliefkit/base/memory.h"
 #include "reliefkit/base/curvature.h"
 #include "reliefkit/relief_edges/relief_edges.h"
 #include "reliefkit/base/repair.h"
@@ -69,4 +74,20 @@ TEST(Surface, RepairHandsOverTheAdjacencyOfTheRepairedMesh) {
   EXPECT_EQ(given.offset, fresh.offset);
   EXPECT_EQ(given.face, fresh.face);
   EXPECT_EQ(given.corner, fresh.corner);
+}
+
+// `sized` fills new arrays of Eigen's fixed-size matrices with zeros (their default constructor
+// leaves the values undefined; the compiler warned that those were read).
+TEST(Memory, SizedArraysOfEigenMatricesStartAtZero) {
+  std::vector<Vec3> v(3, Vec3(1, 2, 3));
+  sized(v, 1000);
+  std::vector<Mat3> m;
+  sized(m, 1000);
+  std::vector<double> d;
+  sized(d, 10);
+  for (const Vec3& x : v) EXPECT_EQ(x, Vec3::Zero());
+  for (const Mat3& x : m) EXPECT_EQ(x, Mat3::Zero());
+  for (double x : d) EXPECT_EQ(x, 0.0);
+  sized(v, 4, Vec3(1, 1, 1));
+  EXPECT_EQ(v.back(), Vec3(1, 1, 1));
 }

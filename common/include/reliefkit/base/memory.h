@@ -19,6 +19,7 @@
 #include <cstdlib>
 
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace reliefkit {
@@ -36,9 +37,27 @@ inline void advise_huge_pages(void* data, size_t bytes) {
 #endif
 }
 
+namespace detail {
+template <class T, class = void>
+struct ZeroOf {
+  static T get() { return T(); }
+};
+template <class T>
+struct ZeroOf<T, std::enable_if_t<(T::SizeAtCompileTime > 0)>> {  // Eigen's fixed-size matrices
+  static T get() { return T(T::Zero()); }
+};
+}  // namespace detail
+
+/// T's zero: T::Zero() for Eigen's fixed-size matrices (whose T() leaves the values undefined:
+/// an array of them filled with T() held copies of whatever was on the stack), else T().
+template <class T>
+T zero_of() {
+  return detail::ZeroOf<T>::get();
+}
+
 /// v = n copies of `value`, with huge pages advised before the memory is first written.
 template <class T>
-void sized(std::vector<T>& v, size_t n, const T& value = T()) {
+void sized(std::vector<T>& v, size_t n, const T& value = zero_of<T>()) {
   std::vector<T>().swap(v);
   v.reserve(n);
   advise_huge_pages(v.data(), n * sizeof(T));
