@@ -322,8 +322,7 @@ struct JacobiPreconditioner {
 };
 
 // Conjugate gradients on K columns of B at once, from the columns `first`.. of X, on the matrix of
-// `fine`. (Fusing the vector updates with the dot products into fewer passes was tried: 1.4x
-// slower on 1 M faces.)
+// `fine`. (Fusing the vector updates with the dot products into fewer passes was tried: slower.)
 template <int K, class Preconditioner>
 int block_cg(const AggregationLevel& fine, Preconditioner& precondition, const Eigen::MatrixXd& B, Eigen::MatrixXd& X,
              int first, double tolerance, int max_iterations) {

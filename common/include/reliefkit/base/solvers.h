@@ -5,8 +5,8 @@
 //  - iterative: conjugate gradients with a diagonal (Jacobi) preconditioner, started from the
 //    caller's guess, three columns at a time with every loop on every core (jacobi_cg,
 //    reliefkit/base/multilevel.h; it replaced Eigen's ConjugateGradient, which solves column after
-//    column with its vector updates on one core: the multi-scale filters' heat steps on 1 M faces
-//    took 8.6-10.8 s with it, 5.3-5.8 s with this);
+//    column with its vector updates on one core: `python3 bench/compare_meshlab.py chapters`,
+//    docs/benchmarks.md, has the multi-scale filters' times before and after);
 //  - multilevel: the same preconditioned by an aggregation V-cycle, for stiff systems;
 //  - direct: CHOLMOD's supernodal Cholesky factorization (SuiteSparse, through Eigen's
 //    CholmodSupport; fill-reducing ordering chosen by CHOLMOD), exact up to rounding whatever the
