@@ -3,12 +3,14 @@
 // with the accuracy of what it timed (recall / precision against the known lines), and the
 // single-scale detectors on the same meshes for comparison.
 //   build/bench/bench_multiscale [--sizes 1000000] [--repeat 1]
+//   build/bench/bench_multiscale --family   (issue 22 point 2: the width-ratio family, below)
 // Ridges & valleys: the unit test's noisy cylinder (20 % noise; valleys and ridges 0.35 and 5
 // edge lengths wide), made longer to reach the size. Relief edges: (a) the noisy disc reliefs of
 // the relief-edge benchmarks (15 % noise); (b) the issue's hard case at the unit test's size
 // (tests/unit/multiscale/test_multiscale.cpp): a sharp narrow band and a wide soft band on a noisy cylinder.
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <omp.h>
 
 #include "bench_util.h"
@@ -39,20 +41,55 @@ std::pair<double, double> score(const rktest::AxialCylinder& c, const std::vecto
   return {n ? recall / n : 0, total > 0 ? good / total : 0};
 }
 
+// Issue 22 point 2: multi-scale ridges and valleys against the best of five single scales on the
+// unit test's noisy cylinder (260 K faces, 20 % noise), over fine widths, width ratios and depths.
+// The issue's bars: recall >= 0.9 on both, precision >= 0.8, F1 >= best single + 0.15.
+void width_ratio_family() {
+  std::printf("Width-ratio family (20 %% noise; widths and depths in edge lengths; best single of 0, 1, 2, 4, 8)\n");
+  for (double fine : {0.35, 1.0})
+    for (double ratio : {3.0, 6.0, 14.0, 30.0})
+      for (double depth : {1.0, 2.0, 4.0}) {
+        const rktest::AxialCylinder cyl =
+            rktest::axial_cylinder(rktest::fine_and_coarse_lines(kAround, fine, fine * ratio, depth), kAround, 0.25, 0.2);
+        const double t0 = rkbench::now();
+        const MultiscaleRidgeValleys ms = multiscale_ridges_valleys(cyl.mesh, {});
+        const double t = rkbench::now() - t0;
+        const rktest::FineCoarseScore m =
+            score_fine_coarse(cyl, ms.curves.ridges, ms.curves.valleys, kTolerance, 3 * cyl.edge);
+        rktest::FineCoarseScore best;
+        double best_at = 0;
+        for (double s : {0.0, 1.0, 2.0, 4.0, 8.0}) {
+          RidgeValleyParams p;
+          p.presmoothing = Length::in_edges(s);
+          const RidgeValleyResult r = compute_ridges_valleys(cyl.mesh, p);
+          const rktest::FineCoarseScore x =
+              score_fine_coarse(cyl, r.ridges, r.valleys, kTolerance, 3 * cyl.edge);
+          if (x.f1() > best.f1()) best = x, best_at = s;
+        }
+        const bool bars = m.fine >= 0.9 && m.coarse >= 0.9 && m.precision >= 0.8 && m.f1() >= best.f1() + 0.15;
+        std::printf("fine %.2f ratio %2.0f depth %.0f  multi %.3f / %.3f / %.3f F1 %.3f (%4.1f s)  "
+                    "single %.0f: %.3f / %.3f / %.3f F1 %.3f  %s\n",
+                    fine, ratio, depth, m.fine, m.coarse, m.precision, m.f1(), t, best_at, best.fine, best.coarse,
+                    best.precision, best.f1(), bars ? "bars met" : "bars not met");
+        std::fflush(stdout);
+      }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && !std::strcmp(argv[1], "--family")) {
+    width_ratio_family();
+    return 0;
+  }
   const auto args = rkbench::parse_args(argc, argv, {1000000});
   std::printf("Multi-scale curves, %d threads (time s, per M faces, peak MiB above the mesh, recall / precision)\n",
               omp_get_max_threads());
   for (long faces : args.sizes) {
     const double h = 2 * M_PI / kAround;
     const double length = faces / (2.0 * kAround) * h;
-    std::vector<AxialFeature> rv;
-    for (int k = 0; k < 12; ++k)
-      rv.push_back({k % 4 < 2 ? AxialFeature::Valley : AxialFeature::Ridge, (k * 150 + 0.37 * k) * h,
-                    k % 2 == 0 ? 0.35 * h : 5 * h, 2 * h, 0, k % 2});
-    const rktest::AxialCylinder cyl = rktest::axial_cylinder(rv, kAround, length, 0.2);
+    const rktest::AxialCylinder cyl =
+        rktest::axial_cylinder(rktest::fine_and_coarse_lines(kAround, 0.35, 5, 2), kAround, length, 0.2);
     for (int rep = 0; rep < args.repeat; ++rep) {
       rkbench::PeakMemory mem;
       mem.start();

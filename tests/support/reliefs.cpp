@@ -341,4 +341,38 @@ AxialScore score_axial(const AxialCylinder& c, const reliefkit::Polylines& curve
   return s;
 }
 
+std::vector<AxialFeature> fine_and_coarse_lines(int around, double fine_width, double coarse_width, double depth) {
+  const double h = 2 * M_PI / around;
+  std::vector<AxialFeature> lines;
+  for (int k = 0; k < 12; ++k) {
+    const bool fine = k % 2 == 0;
+    lines.push_back({k % 4 < 2 ? AxialFeature::Valley : AxialFeature::Ridge, (k * 150 + 0.37 * k) * h,
+                     (fine ? fine_width : coarse_width) * h, depth * h, 0, fine ? 0 : 1});
+  }
+  return lines;
+}
+
+double FineCoarseScore::f1() const {
+  const double r = 0.5 * (fine + coarse);
+  return r + precision > 0 ? 2 * r * precision / (r + precision) : 0;
+}
+
+FineCoarseScore score_fine_coarse(const AxialCylinder& c, const reliefkit::Polylines& ridges,
+                                  const reliefkit::Polylines& valleys, double tol, double margin) {
+  const AxialScore sv = score_axial(c, valleys, {AxialFeature::Valley}, tol, margin);
+  const AxialScore sr = score_axial(c, ridges, {AxialFeature::Ridge}, tol, margin);
+  FineCoarseScore s;
+  int nf = 0, nc = 0;
+  for (size_t i = 0; i < c.features.size(); ++i) {
+    const double r = c.features[i].kind == AxialFeature::Valley ? sv.recall[i] : sr.recall[i];
+    (c.features[i].group == 0 ? s.fine : s.coarse) += r;
+    ++(c.features[i].group == 0 ? nf : nc);
+  }
+  if (nf > 0) s.fine /= nf;
+  if (nc > 0) s.coarse /= nc;
+  const double len = sv.length + sr.length;
+  s.precision = len > 0 ? (sv.precision * sv.length + sr.precision * sr.length) / len : 0;
+  return s;
+}
+
 }  // namespace rktest

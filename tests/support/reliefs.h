@@ -99,4 +99,18 @@ struct AxialScore {
 AxialScore score_axial(const AxialCylinder& c, const reliefkit::Polylines& curves,
                        const std::vector<AxialFeature::Kind>& kinds, double tol, double margin);
 
+/// Twelve lines along a cylinder of `around` cells, every 150 edge lengths: valleys and ridges
+/// alternating in pairs, fine (even, group 0) and coarse (odd, group 1), off the vertex columns by
+/// a varying fraction of an edge; widths and depth in edge lengths.
+std::vector<AxialFeature> fine_and_coarse_lines(int around, double fine_width, double coarse_width, double depth);
+
+/// Ridges and valleys scored together against fine_and_coarse_lines (or any ridges / valleys of
+/// groups 0 and 1): the mean recall of each group and the length-weighted precision.
+struct FineCoarseScore {
+  double fine = 0, coarse = 0, precision = 0;
+  double f1() const;  // of the mean of the two recalls and the precision
+};
+FineCoarseScore score_fine_coarse(const AxialCylinder& c, const reliefkit::Polylines& ridges,
+                                  const reliefkit::Polylines& valleys, double tol, double margin);
+
 }  // namespace rktest

@@ -22,6 +22,7 @@ void OptimalScaleOptions::validate() const {
   require_range(fill_weight, "Fill weight a f_max", 0, 1e6);
   if (fill_smoothness != 0) require_range(fill_smoothness, "Fill smoothness", 1e-6, 1e6);
   require_range(featureless_pull, "Featureless pull", 1e-9, 1e3);
+  require_range(max_scale_growth, "Largest scale growth", 0, 1e3);
   require_range(final_smoothing_edges, "Final smoothing (edge lengths)", 0, 100);
 }
 
@@ -441,6 +442,30 @@ std::vector<double> fill_scales(const Surface& surface, const OptimalScaleOption
   return sigma;  // in edge lengths
 }
 
+// Step 3b: σ_v <= σ_u + slope |uv| for every pair of neighbours, the largest σ that holds it
+// (each vertex lowered to the bound its neighbours set, until nothing changes: the bound
+// travels one ring per sweep, as far as a selection's scale divided by the slope). σ in mesh units.
+void limit_scale_growth(const Surface& surface, double slope, std::vector<double>& sigma) {
+  const MeshTopology& topo = surface.topology();
+  const std::vector<Vec3>& x = surface.mesh().vertices;
+  const int nv = surface.n_vertices();
+  std::vector<double> next(sigma.size());
+  for (long changed = 1; changed > 0;) {
+    changed = 0;
+#pragma omp parallel for schedule(static) reduction(+ : changed)
+    for (int v = 0; v < nv; ++v) {
+      double bound = sigma[v];
+      for (int k = topo.ring.offset[v]; k < topo.ring.offset[v + 1]; ++k) {
+        const int u = topo.ring.vertex[k];
+        if (sigma[u] > 0) bound = std::min(bound, sigma[u] + slope * (x[u] - x[v]).norm());
+      }
+      changed += bound < sigma[v];
+      next[v] = bound;
+    }
+    sigma.swap(next);
+  }
+}
+
 }  // namespace
 
 OptimalScale optimal_scale(const Surface& surface, const OptimalScaleOptions& opt) {
@@ -475,6 +500,7 @@ OptimalScale optimal_scale(const Surface& surface, const OptimalScaleOptions& op
                     levels.log_edges.front(), levels.log_edges.back(), out.fill_solve);
     sized(out.sigma, size_t(nv));
     for (int v = 0; v < nv; ++v) out.sigma[v] = filled[v] * h;
+    if (opt.max_scale_growth > 0) limit_scale_growth(surface, opt.max_scale_growth, out.sigma);
   } else {
     out.sigma = out.selected;
   }
