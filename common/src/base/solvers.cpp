@@ -222,7 +222,6 @@ SolveReport solve_hpd(const HermitianMatrix& A, const Eigen::VectorXcd& b, Eigen
 }
 
 double predicted_cg_iterations(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& mass) {
-  constexpr double kIterationsPerRootCondition = 5.5;
   std::vector<double> ratio;
   ratio.reserve(size_t(A.rows()));
   for (int i = 0; i < A.rows() && i < mass.size(); ++i)
@@ -230,7 +229,12 @@ double predicted_cg_iterations(const Eigen::SparseMatrix<double>& A, const Eigen
   if (ratio.empty()) return 0;
   auto mid = ratio.begin() + ratio.size() / 2;
   std::nth_element(ratio.begin(), mid, ratio.end());
-  return kIterationsPerRootCondition * std::sqrt(std::max(1.0, *mid));
+  return predicted_cg_iterations(*mid);
+}
+
+double predicted_cg_iterations(double median_diagonal_ratio) {
+  constexpr double kIterationsPerRootCondition = 5.5;
+  return kIterationsPerRootCondition * std::sqrt(std::max(1.0, median_diagonal_ratio));
 }
 
 SolveReport solve_spd(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, Eigen::MatrixXd& X,

@@ -17,6 +17,7 @@ struct Block {
   Eigen::SparseMatrix<double> K;            // stiffness among the unknowns (positive semi-definite)
   Eigen::VectorXd mass;                     // per unknown
   std::vector<std::vector<std::pair<int, double>>> known;  // per unknown: (mesh vertex, weight) of known neighbours
+  double median_stiffness = 0;              // median of K_ii / mass_i (cost model, solver choice)
 };
 
 // (M + Δτ K) D = -Δτ (K X_unknown + K_known X_known): the displacement over one step. A keeps K's
@@ -44,7 +45,7 @@ SolveReport step(const Block& b, double dtau, Eigen::SparseMatrix<double>& A, co
   SolverOptions so;
   so.method = opt.method;
   so.tolerance = opt.tolerance;
-  so.prefer_direct = predicted_cg_iterations(A, b.mass) > kDirectAboveIterations;
+  so.prefer_direct = predicted_cg_iterations(1 + dtau * b.median_stiffness) > kDirectAboveIterations;
   so.label = "Scale space";
   SolveReport rep = solve_spd(A, B, D, so);
   for (int i = 0; i < n; ++i) x[b.vertex[i]] += D.row(i).transpose();
@@ -130,16 +131,18 @@ class Diffusion {
   // The operator of a geometry (its Laplacian `lap`): the blocks' stiffness and mass, their system
   // matrices' structure, and the cost model's figures.
   void assemble(const TriMesh& geometry, const LaplacianResult& lap) {
-    assemble_interior(lap);
+    const bool new_pattern = assemble_interior(lap);
     assemble_loop(geometry);
-    inner_.K.makeCompressed();
     loop_.K.makeCompressed();
-    inner_A_ = inner_.K, loop_A_ = loop_.K;
-    inner_diag_ = diagonal_positions(inner_.K), loop_diag_ = diagonal_positions(loop_.K);
+    // The system matrices take their blocks' patterns (step() writes all their values); the
+    // interior's is the first level's for the whole run, the loop's is rebuilt with its triplets.
+    if (new_pattern) inner_A_ = inner_.K, inner_diag_ = diagonal_positions(inner_.K);
+    loop_A_ = loop_.K, loop_diag_ = diagonal_positions(loop_.K);
+    inner_.median_stiffness = median_stiffness(inner_), loop_.median_stiffness = median_stiffness(loop_);
     // Cost model of one level, in sparse products: explicit steps need dtau * bound of them;
     // implicit ones about 2 per conjugate-gradient iteration (capped where Cholesky takes over).
     bound_ = std::max(gershgorin_bound(inner_), gershgorin_bound(loop_));
-    stiff_ = std::max(median_stiffness(inner_), median_stiffness(loop_));
+    stiff_ = std::max(inner_.median_stiffness, loop_.median_stiffness);
   }
 
   // Diffuses the positions x from time tau to target (tau < target), explicitly or implicitly,
@@ -188,8 +191,10 @@ class Diffusion {
   // Interior block: K = -L restricted; the weights towards loop and fixed vertices are known terms.
   // Every level's Laplacian has the first one's pattern (the mesh's rings): the pattern is built
   // once, later levels only write their values into it.
-  void assemble_interior(const LaplacianResult& lap) {
-    if (interior_slot_.size() != size_t(lap.L.nonZeros())) build_interior_pattern(lap);
+  // Returns whether the pattern was (re)built.
+  bool assemble_interior(const LaplacianResult& lap) {
+    const bool new_pattern = interior_slot_.size() != size_t(lap.L.nonZeros());
+    if (new_pattern) build_interior_pattern(lap);
     const int n = static_cast<int>(inner_.vertex.size());
     const Eigen::VectorXd old_mass = inner_.mass;
     inner_.mass.resize(n);
@@ -205,6 +210,7 @@ class Diffusion {
         else inner_.known[i][size_t(-slot - 1)].second = -lap.L.valuePtr()[e];  // a stiffness entry, like the loop block's
       }
     }
+    return new_pattern;
   }
 
   // Where each entry of the Laplacian goes: a position in K's values, or (-1 - k) for the k-th

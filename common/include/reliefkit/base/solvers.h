@@ -85,6 +85,9 @@ Eigen::SparseMatrix<double> real_form(const HermitianMatrix& A);
 /// Measured (build/bench/bench_solvers, bench_curves): 467 iterations at a heat step of 52 edge
 /// lengths on the noisy cylinder relief, 391 at 60 on the relief torus (1 M faces), 561 at 4 M.
 double predicted_cg_iterations(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& mass);
+/// The same from the median of A_ii / M_i, for a caller that knows it (a heat step M + dtau K:
+/// 1 + dtau x the median of K_ii / M_i).
+double predicted_cg_iterations(double median_diagonal_ratio);
 /// A Cholesky factorization costs what conjugate gradients spend on about 400 iterations (3.1 s
 /// at 1 M faces) to 340 (17 s at 4 M): above this prediction, callers set prefer_direct.
 constexpr double kDirectAboveIterations = 400;
