@@ -1,10 +1,6 @@
-#include "reliefkit/base/memory.h"
 // The per-run geometry context: computed once, shared by the stages, never stale after a change of
-#include "reliefkit/base/memory.h"
 // positions; the repair's adjacency is the one a fresh build gives.
-#include "reliefkit/base/memory.h"
 #include <gtest/gtest.h>
-#include "reliefkit/base/memory.h"
 
 #include "reliefkit/base/memory.h"
 #include "reliefkit/base/curvature.h"
