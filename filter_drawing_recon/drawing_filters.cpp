@@ -330,6 +330,7 @@ void apply_relief(FilterCall& call) {
   const InterpretationParams ip = interpretation_params(s, d.curves);
   if (call.progress) call.progress(30, "Interpreting the drawing");
   const DrawingInterpretation di = interpret_drawing(d.curves, ip);
+  require_rising_regions(d.curves, di, d.detection.sigma);
   const cv::Rect area = drawing_extent(d.curves, 4 * s.relief.margin + 4);
   const ReliefLayers r = s.base == kCurrent ? relief_on_layer(call, d, di, s, area) : relief_on_grid(call, d, di, s, area);
   const QString written = s.interpretation.isEmpty() ? write_interpretation_file(call, d, di) : QString();
@@ -338,8 +339,8 @@ void apply_relief(FilterCall& call) {
   add_curve_layer(call.doc, image_label(d, "curves"), r.curves, vcg::Color4b(200, 30, 30, 255));
   const int top = di.region_height.empty() ? 0 : std::max(0, *std::max_element(di.region_height.begin(), di.region_height.end()));
   call.log(QString("Relief from Line Drawing: %1 curves, %2 regions (%3 curves not between two regions), levels 0 to %4, "
-                   "%5 curves fixed by the interpretation file; base %6, %7 vertices (%8 px apart), step %9 mesh units; "
-                   "solves: %10 | %11; %12 s.%13")
+                   "%14 regions rise; %5 curves fixed by the interpretation file; base %6, %7 vertices (%8 px apart), "
+                   "step %9 mesh units; solves: %10 | %11; %12 s.%13")
                .arg(d.curves.curves.size())
                .arg(di.region_count)
                .arg(di.ignored_curves)
@@ -352,7 +353,8 @@ void apply_relief(FilterCall& call) {
                .arg(QString::fromStdString(r.relief.laplacian_solve.summary()))
                .arg(QString::fromStdString(r.relief.relief_solve.summary()))
                .arg(seconds_since(t0), 0, 'f', 2)
-               .arg(written.isEmpty() ? QString() : " Interpretation written to " + written + "."));
+               .arg(written.isEmpty() ? QString() : " Interpretation written to " + written + ".")
+               .arg(rising_regions(di)));
 }
 
 }  // namespace

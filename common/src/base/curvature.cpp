@@ -197,7 +197,8 @@ constexpr int kMaxNeighbours = 128;
 
 // Collects the two-ring of v (without v), one-ring first, from the vertex-face adjacency.
 // `mark` holds one stamp per vertex (per thread); stamping with v + 1 makes a reset unnecessary.
-inline void two_ring(const TriMesh& mesh, const VertexFaces& vf, int v, std::vector<int>& out,
+// Returns whether v lies on the mesh's border: its fan is open (more neighbours than faces).
+inline bool two_ring(const TriMesh& mesh, const VertexFaces& vf, int v, std::vector<int>& out,
                      std::vector<int>& mark) {
   out.clear();
   const int stamp = v + 1;
@@ -215,6 +216,7 @@ inline void two_ring(const TriMesh& mesh, const VertexFaces& vf, int v, std::vec
   add_ring_of(v);
   const size_t first = out.size();
   for (size_t i = 0; i < first && out.size() < size_t(kMaxNeighbours); ++i) add_ring_of(out[i]);
+  return first > size_t(vf.offset[v + 1] - vf.offset[v]);
 }
 
 // Exponents (i, j) and factors c of the basis X^i Y^j * c:
@@ -297,11 +299,13 @@ bool solve_height(const double S[7][8], const double T[4][4], double* x) {
 // Least-squares osculating jet at one vertex: the height over the tangent plane of the vertex
 // normal n0 (Max's weights),
 //   z = g1 x + g2 y + (A x^2 + 2B xy + C y^2)/2 + (D x^3 + 3E x^2 y + 3F x y^2 + G y^3)/6,
-// fitted to the two-ring (cubic with >= 12 neighbours, quadratic with >= 6). The fitted gradient
+// fitted to the two-ring (cubic with >= 12 neighbours, quadratic with >= 6; on the border the
+// normal and II from the quadratic: a one-sided cubic swung the normal by tens of degrees on a
+// noisy plane's rim, the quadratic by about one). The fitted gradient
 // (g1, g2) corrects the normal: n = normalise(n0 - g1 u - g2 w), and II is re-expressed in the
 // corrected tangent plane with the metric factor 1/sqrt(1 + |g|^2), so an inexact starting
 // normal costs only second-order terms. Returns false if no fit was possible.
-bool jet_at(const TriMesh& mesh, int v, const std::vector<int>& nb, std::vector<double>& buf, Vec3& n,
+bool jet_at(const TriMesh& mesh, int v, const std::vector<int>& nb, bool on_border, std::vector<double>& buf, Vec3& n,
             double& ku, double& kuv, double& kv, Vec3& u, Vec3& w, double C[4]) {
   const int m = std::min(static_cast<int>(nb.size()), kMaxNeighbours);  // one-ring comes first
   if (m < 6) return false;
@@ -323,8 +327,14 @@ bool jet_at(const TriMesh& mesh, int v, const std::vector<int>& nb, std::vector<
   const double frame[9] = {u0.x(), u0.y(), u0.z(), w0.x(), w0.y(), w0.z(), n.x(), n.y(), n.z()};
   double S[7][8], T[4][4];
   height_moments(dx, dy, dz, m, frame, S, T);
+  // On the border the third-order terms still come from the cubic (its one-sided C keeps the
+  // derivative's sign), the normal and II from the quadratic.
   const bool cubic = m >= 12;
   if (!(cubic ? solve_height<9>(S, T, x) : solve_height<5>(S, T, x))) return false;
+  if (cubic && on_border) {
+    double q[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    if (solve_height<5>(S, T, q)) std::copy(q, q + 5, x);
+  }
   Vec3 nn = n - x[0] * u0 - x[1] * w0;
   double l = nn.norm();
   if (!(l > 0)) return false;
@@ -380,8 +390,8 @@ static Curvature compute_curvature_jets(const TriMesh& mesh, const CurvatureOpti
     for (int v = 0; v < nv; ++v) {
       Vec3 n = out.normal[v], u, w;
       double ku = 0, kuv = 0, kv = 0, C[4] = {0, 0, 0, 0};
-      two_ring(mesh, vf, v, nb, mark);
-      bool ok = out.point_area[v] > 0 && jet_at(mesh, v, nb, buf, n, ku, kuv, kv, u, w, C);
+      const bool on_border = two_ring(mesh, vf, v, nb, mark);
+      bool ok = out.point_area[v] > 0 && jet_at(mesh, v, nb, on_border, buf, n, ku, kuv, kv, u, w, C);
       if (!ok) {
         bad[v] = 1;
         out.dir1[v] = any_tangent(out.normal[v]);

@@ -326,13 +326,25 @@ double percentile(std::vector<double> values, double q) {
 
 namespace reliefkit {
 
-std::vector<double> interior_segment_strengths(const Polylines& curves, int n, int margin) {
-  std::vector<double> out;
+bool inside_noise_patch(int v, int n, int margin) {
+  const int i = v % (n + 1), j = v / (n + 1);
+  return i >= margin && j >= margin && i <= n - margin && j <= n - margin;
+}
+
+std::vector<char> interior_segments(const Polylines& curves, int n, int margin) {
+  std::vector<char> inside(curves.segments.size());
   for (size_t k = 0; k < curves.segments.size(); ++k) {
     const int cell = curves.segment_face[k] / 2, i = cell % n, j = cell / n;
-    if (i < margin || j < margin || i >= n - margin || j >= n - margin) continue;
-    out.push_back(0.5 * (curves.strength[curves.segments[k][0]] + curves.strength[curves.segments[k][1]]));
+    inside[k] = i >= margin && j >= margin && i < n - margin && j < n - margin;
   }
+  return inside;
+}
+
+std::vector<double> interior_segment_strengths(const Polylines& curves, int n, int margin) {
+  const std::vector<char> inside = interior_segments(curves, n, margin);
+  std::vector<double> out;
+  for (size_t k = 0; k < curves.segments.size(); ++k)
+    if (inside[k]) out.push_back(0.5 * (curves.strength[curves.segments[k][0]] + curves.strength[curves.segments[k][1]]));
   return out;
 }
 

@@ -10,6 +10,7 @@
 #include <queue>
 #include <numeric>
 #include <set>
+#include <sstream>
 #include <tuple>
 
 #include "reliefkit/base/scale.h"
@@ -322,6 +323,25 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
     if (a >= 0 && b >= 0) out.step[size_t(k)] = out.region_height[size_t(b)] - out.region_height[size_t(a)];
   }
   return out;
+}
+
+int rising_regions(const DrawingInterpretation& di) {
+  return static_cast<int>(std::count_if(di.region_height.begin(), di.region_height.end(), [](int h) { return h > 0; }));
+}
+
+void require_rising_regions(const DrawingCurves& curves, const DrawingInterpretation& di, double line_scale_px) {
+  if (rising_regions(di) > 0) return;
+  const int nc = static_cast<int>(curves.curves.size());
+  std::ostringstream msg;
+  msg << "No region of the drawing rises above the ground, so the relief would be a flat plane: " << nc
+      << " curves, " << di.region_count << " regions, " << di.ignored_curves << " of the curves between no two regions";
+  if (di.ignored_curves * 2 >= nc)
+    msg << " (their ends are free: hatching, stippling or sketch strokes — or the two edges of an outline thicker "
+           "than the line scale of "
+        << line_scale_px << " px, traced as separate lines)";
+  msg << ". What to change: a Line scale of about half the width of the drawing's outlines in pixels (an 8-px "
+         "pen: 4); or close the gaps in broken outlines; or give the steps in an interpretation file.";
+  throw InputError(msg.str());
 }
 
 }  // namespace reliefkit

@@ -152,19 +152,40 @@ void add_other_scale(Polylines& curves, const Polylines& other, OtherScale side,
   append_curves(curves, drop_short_chains(select_segments(other, add), min_length));
 }
 
+// A line blurred by the finest reading's pre-smoothing σ is flanked by lines of the other kind
+// about √3 σ away (the feet of a Gaussian groove are crests), and two steps closer than σ merge
+// into one bump whose edges sit about σ outside them. So the finest reading's curves within
+// kFlankReach σ of the multi-scale reading's `near` (ridges: its valleys; valleys: its ridges;
+// edges: its edges) are dropped: beside a feature finer than σ they are its blurred flanks, and a
+// true curve there is the multi-scale reading's to draw, at its own scale. Pieces left shorter
+// than `min_length` go too (they would be dashes).
+void drop_blurred_flanks(Polylines& finest, const Polylines& near, double sigma, double min_length) {
+  std::vector<char> keep = segments_near(finest, near, kFlankReach * sigma);
+  for (char& k : keep) k = !k;
+  finest = drop_short_chains(select_segments(finest, keep), min_length);
+}
+
 void add_finest_scale_lines(const Surface& surface, RidgeValleyParams params, const OptimalScale& scale,
                             RidgeValleyResult& multi) {
   if (params.progress) params.progress(97, "Multi-scale ridges and valleys: the finest significant scale");
   params.progress = nullptr;
   params.presmoothing = Length::automatic();
-  const RidgeValleyResult finest = compute_ridges_valleys(surface, params);
+  // The run's noise patch where it carries the scan's noise (above kCleanNoise a floor is measured).
+  const double noise = surface.noise().relative;
+  const std::optional<Surface> patch =
+      noise > kCleanNoise && std::isfinite(noise)
+          ? std::optional<Surface>(scale.noise_patch.carrying(noise, noise_patch_cells(surface.mesh().n_faces())))
+          : std::nullopt;
+  const RidgeValleyResult finest = compute_ridges_valleys(surface, params, patch ? &*patch : nullptr);
   const double h = surface.scale().edge;
   // The finest lines' strengths as the multi-scale ones' ((σ / h)² |k| h, γ = 1), σ their
   // pre-smoothing, at least the smallest scale of the range.
   const double sigma = std::max(finest.presmoothing, scale.levels.front()) / h;
+  const Polylines multi_ridges = multi.ridges, multi_valleys = multi.valleys;
   for (bool valleys : {false, true}) {
     Polylines lines = valleys ? finest.valleys : finest.ridges;
     for (double& x : lines.strength) x *= sigma * sigma * h;
+    drop_blurred_flanks(lines, valleys ? multi_ridges : multi_valleys, finest.presmoothing, multi.min_length);
     Polylines& wider = valleys ? multi.valleys : multi.ridges;
     add_other_scale(lines, wider, OtherScale::Wider, scale, multi.min_length);
     wider = std::move(lines);
@@ -184,8 +205,10 @@ void add_finest_scale_edges(const Surface& surface, ReliefEdgeParams params, con
       noise > 0 && std::isfinite(noise) ? std::optional<Surface>(scale.noise_patch.carrying(noise, cells)) : std::nullopt;
   guidance.noise_patch = patch ? &*patch : nullptr;
   guidance.noise_patch_cells = cells;
-  add_other_scale(multi.edges, compute_relief_edges(surface, params, guidance).edges, OtherScale::Finest, scale,
-                  multi.min_length);
+  const ReliefEdgeResult finest = compute_relief_edges(surface, params, guidance);
+  Polylines edges = finest.edges;
+  drop_blurred_flanks(edges, multi.edges, finest.presmoothing, multi.min_length);
+  add_other_scale(multi.edges, edges, OtherScale::Finest, scale, multi.min_length);
 }
 
 MultiscaleReliefEdges multiscale_relief_edges(const Surface& surface, OptimalScaleOptions opt,

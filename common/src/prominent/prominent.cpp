@@ -22,9 +22,12 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 // the smallest rotation taking a to b (fig. 6.6 (a)).
 Vec3 transport(const Vec3& u, const Vec3& a, const Vec3& b) { return u - (u.dot(b) / (1 + a.dot(b))) * (a + b); }
 
-// The solve's relative residual: the field's median angle on the test reliefs is the same at 1e-2
-// and 1e-3 (0.2-1.2 deg), and 1e-2 takes half the iterations (82 vs 154 at 1 M faces).
-constexpr double kFieldTolerance = 1e-2;
+// The solve's relative residual. The field's median angle on the test reliefs is the same at 1e-2
+// and 1e-3 (0.2-1.2 deg), but far from every feature the field converges last and contributes
+// little to the residual: on a plane carrying one disc, at 1e-2 the field there was left rough
+// (mean angle between neighbours 15 deg, 25 iterations) once the plane's open border no longer
+// drew false features to anchor it; 3e-3: 1.1 deg, 72 iterations (1e-3: 1.07 deg, 127).
+constexpr double kFieldTolerance = 3e-3;
 
 // Below this cosine between neighbouring normals (a fold, a flipped face) the pair is not coupled.
 constexpr double kMinNormalCos = -0.5;

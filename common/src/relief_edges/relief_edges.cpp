@@ -60,8 +60,7 @@ double noise_tilt(const Surface& patch, int n, double presmoothing_edges) {
   const int margin = 3 + static_cast<int>(std::ceil(2 * presmoothing_edges));
   std::vector<double> tilt;
   for (int v = 0; v < patch.n_vertices(); ++v) {
-    const int i = v % (n + 1), j = v / (n + 1);
-    if (i < margin || j < margin || i > n - margin || j > n - margin) continue;
+    if (!inside_noise_patch(v, n, margin)) continue;
     tilt.push_back(std::acos(std::clamp(sc.curvature.normal[v].z(), -1.0, 1.0)));
   }
   return kNoiseTiltFactor * percentile(tilt, kNoiseCurvePercentile);

@@ -60,11 +60,60 @@ Polylines select_ridge_lines(const Polylines& all, double threshold, const Ridge
   return drop_short_chains(kept, min_length);
 }
 
+namespace {
+
+// The smallest threshold at which `lines` (drawn by noise alone) keep no line through the
+// filter's selection (hysteresis, bridged gaps, minimum length), by bisection.
+double quiet_threshold(const Polylines& lines, const RidgeValleyParams& p, double edge) {
+  double lo = 0, hi = 0;
+  for (double x : lines.strength) hi = std::max(hi, x);
+  const double min_length = p.min_length_edges * edge;
+  for (int it = 0; it < 30 && hi > 0; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (select_ridge_lines(lines, mid, p, edge, min_length).segments.empty() ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+}  // namespace
+
+RidgeStrengths noise_ridge_strengths(const Surface& patch, int n, double presmoothing_edges, const RidgeValleyParams& p) {
+  if (!(presmoothing_edges >= 0 && presmoothing_edges <= 100)) return {};
+  const double edge = patch.scale().edge;
+  CurvatureOptions co;  // (the patch's own noise is not needed)
+  co.estimator = p.estimator;
+  co.smoothing_scale = presmoothing_edges * edge;
+  co.derivatives = true;
+  co.topology = &patch.topology();
+  const Curvature c = compute_curvature(patch.mesh(), co);
+  const int margin = 3 + static_cast<int>(std::ceil(2 * presmoothing_edges));
+  auto floor = [&](bool valleys) {
+    const Polylines all = ridge_lines(patch.mesh(), c, valleys, 0.0);
+    return kNoiseCurveFactor * quiet_threshold(select_segments(all, interior_segments(all, n, margin)), p, edge) * edge;
+  };
+  return {floor(false), floor(true)};
+}
+
+namespace {
+
+// The noise floor of a scan (unit-free, see noise_ridge_strengths) on the given patch, or on one
+// made for it; zero on a clean scan.
+RidgeStrengths scan_noise_ridge_strengths(const RidgeValleyResult& r, long long faces, const RidgeValleyParams& p,
+                                          const Surface* given_patch) {
+  if (!(r.noise.relative > kCleanNoise) || !std::isfinite(r.noise.relative)) return {};
+  const int n = noise_patch_cells(faces);
+  const double presmoothing_edges = r.presmoothing / r.scale.edge;
+  if (given_patch) return noise_ridge_strengths(*given_patch, n, presmoothing_edges, p);
+  return noise_ridge_strengths(Surface(noise_patch(r.noise.relative, n)), n, presmoothing_edges, p);
+}
+
+}  // namespace
+
 RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyParams& p) {
   return compute_ridges_valleys(Surface::borrow(mesh), p);
 }
 
-RidgeValleyResult compute_ridges_valleys(const Surface& surface, const RidgeValleyParams& p) {
+RidgeValleyResult compute_ridges_valleys(const Surface& surface, const RidgeValleyParams& p, const Surface* noise_patch) {
   const TriMesh& mesh = surface.mesh();
   RidgeValleyResult r;
   static_cast<ScaledCurvature&>(r) = begin_curve_filter(surface, p);
@@ -92,8 +141,10 @@ RidgeValleyResult compute_ridges_valleys(const Surface& surface, const RidgeVall
   Polylines cand_v = ridge_lines(mesh, r.curvature, true, floor * noise_v, &str_v);
   for (double x : str_r) r.strongest_ridge = std::max(r.strongest_ridge, x);
   for (double x : str_v) r.strongest_valley = std::max(r.strongest_valley, x);
-  r.ridge_threshold = p.relative_threshold * automatic_curve_threshold(noise_r, std::move(str_r));
-  r.valley_threshold = p.relative_threshold * automatic_curve_threshold(noise_v, std::move(str_v));
+  // At least what noise alone draws after the same pre-smoothing (on the noise patch).
+  const RidgeStrengths by_noise = scan_noise_ridge_strengths(r, mesh.n_faces(), p, noise_patch);
+  r.ridge_threshold = p.relative_threshold * std::max(automatic_curve_threshold(noise_r, std::move(str_r)), by_noise.ridges / r.scale.edge);
+  r.valley_threshold = p.relative_threshold * std::max(automatic_curve_threshold(noise_v, std::move(str_v)), by_noise.valleys / r.scale.edge);
   r.ridges = select_ridge_lines(cand_r, r.ridge_threshold, p, r.scale.edge, r.min_length);
   r.valleys = select_ridge_lines(cand_v, r.valley_threshold, p, r.scale.edge, r.min_length);
   return r;

@@ -276,6 +276,10 @@ TEST(DrawingFilters, BadInputStopsWithAClearMessage) {
   write_text(dir + "/empty.png", "");
   cv::imwrite(dir + "/white.png", cv::Mat(300, 300, CV_8UC1, cv::Scalar(255)));
   cv::imwrite(dir + "/one.png", cv::Mat(1, 1, CV_8UC1, cv::Scalar(0)));
+  // Hatching alone: parallel strokes with free ends close no region, so nothing can rise.
+  cv::Mat hatching(300, 300, CV_8UC1, cv::Scalar(255));
+  for (int k = 0; k < 8; ++k) cv::line(hatching, {60 + 25 * k, 60}, {40 + 25 * k, 240}, cv::Scalar(0), 2, cv::LINE_AA);
+  cv::imwrite(dir + "/hatching.png", hatching);
   write_text(dir + "/unknown.json", R"({"format": "reliefkit-drawing-interpretation", "curves": [{"id": 999}]})");
   write_text(dir + "/notjson.json", "{curves: oops");
   // A cycle: three rays from a disc's centre, each fixed with the sector on its left the lower one
@@ -318,6 +322,7 @@ TEST(DrawingFilters, BadInputStopsWithAClearMessage) {
       {"empty file", curves_filter(dir + "/empty.png"), "not an image"},
       {"all-white drawing", curves_filter(dir + "/white.png"), "No lines were found"},
       {"1 x 1 drawing", relief_filter(dir + "/one.png"), "No lines were found"},
+      {"hatching only: a flat relief", relief_filter(dir + "/hatching.png"), "No region of the drawing rises"},
       {"NaN line scale", curves_filter(png, 300, 1, std::nan("")), "Line scale"},
       {"negative DPI", curves_filter(png, -3), "DPI"},
       {"cycle", relief_with(dir + "/sectors.png", dir + "/cycle.json"), "contradict each other"},

@@ -149,15 +149,18 @@ TEST(ReliefEdgesReliefs, DefaultsOnNoisyReliefs) {
 }
 
 // The reliefs of issue 22's report besides discs, with 15 % noise, at defaults: a ring (a convex
-// and a concave outline) asserted; a rounded rectangle and a sharp five-pointed star printed, not
-// asserted — open items of issue 22: the rectangle's precision is 0.91 (false edges along the
-// plane's open border), the star's points, narrower than two step widths, are missed (0.65).
+// and a concave outline) and a rounded rectangle on a plane asserted; a five-pointed star printed,
+// not asserted. The rectangle's precision was 0.91 while border vertices took cubic jets (false
+// edges along the plane's open border; quadratic there: 0.95). The star's 36-degree points are
+// narrower than the step's transition over a third of their length: both curve types round them
+// off (0.65 / 0.55 here; noise-free without pre-smoothing 0.86 / 0.81, the most any detector of
+// this support reaches on it).
 TEST(ReliefEdgesReliefs, DefaultsOnRingsAndRoundedRectangles) {
   rktest::ReliefShape s;
   s.noise = 0.15;
   const std::tuple<const char*, rktest::Relief, bool> cases[] = {
       {"ring on sphere", rktest::ring_on_sphere(s), true},
-      {"rounded rectangle", rktest::outlines_on_plane(s, false, true), false},
+      {"rounded rectangle", rktest::outlines_on_plane(s, false, true), true},
       {"star", rktest::outlines_on_plane(s, true, false), false}};
   for (const auto& [name, r, asserted] : cases) {
     const rktest::Detection re = rktest::score(r, compute_relief_edges(r.mesh).edges, r.mean_edge);
@@ -232,6 +235,27 @@ TEST(RidgesValleys, GroovesAndCrests) {
       EXPECT_GE(near / total, noise > 0 ? 0.85 : 0.95) << what;
       EXPECT_GT(inner, 0.9 * 6 * 1.8) << what;
     }
+  }
+}
+
+// Noise alone, on a featureless plane at defaults, draws no lines: the thresholds stay above what
+// the same pre-smoothing and selection draw on a noise patch (noise_ridge_strengths). Without
+// that floor (the median |k| and the strongest segments' percentile alone) the noise drew 2,200
+// edge lengths of ridges and valleys at 20 % noise.
+TEST(RidgesValleys, NoiseAloneDrawsNoLinesAtDefaults) {
+  for (double noise : {0.2, 0.3}) {
+    TriMesh m = rktest::height_field([](double, double) { return 0.0; }, 1.0, 150, 0.3, 5);
+    const double h = edge_length_stats(m).mean;
+    rktest::Rng rng(23);
+    for (auto& p : m.vertices) p.z() += noise * h * rng.normal();
+    const RidgeValleyResult r = compute_ridges_valleys(m);
+    double length = 0;
+    for (const Polylines* p : {&r.ridges, &r.valleys})
+      for (const auto& s : p->segments) length += (p->points[s[0]] - p->points[s[1]]).norm();
+    std::printf("noise %.0f%%, pre-smoothing %.2f edge lengths: lines %.1f edge lengths long\n", 100 * noise,
+                r.presmoothing / h, length / h);
+    // Measured: 0 at both levels (a plane twice as wide: 4 and 8 edge lengths of 90,000).
+    EXPECT_LT(length / h, 10) << noise;
   }
 }
 

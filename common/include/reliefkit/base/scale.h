@@ -118,6 +118,13 @@ double percentile(std::vector<double> values, double q);
 
 namespace reliefkit {
 
+/// Whether vertex `v` of noise_patch(.., n) lies at least `margin` cells inside the patch (its
+/// border has one-sided fits and is no model of a scan's interior).
+bool inside_noise_patch(int v, int n, int margin);
+
+/// Which segments of `curves` extracted on noise_patch(.., n) lie at least `margin` cells inside it.
+std::vector<char> interior_segments(const Polylines& curves, int n, int margin);
+
 /// Strengths (mean of their end points') of the segments of `curves` extracted on
 /// noise_patch(.., n) that lie at least `margin` cells inside the patch (its border has
 /// one-sided fits and is no model of a scan's interior).

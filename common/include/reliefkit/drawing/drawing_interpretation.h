@@ -75,4 +75,12 @@ struct DrawingInterpretation {
 /// directions contradict each other (a cycle), or name unknown curves or the same curve twice.
 DrawingInterpretation interpret_drawing(const DrawingCurves& curves, const InterpretationParams& params = {});
 
+/// The regions above the ground (level > 0).
+int rising_regions(const DrawingInterpretation& di);
+
+/// A relief needs a region above the ground. Throws InputError when none rises, saying what the
+/// drawing gave (curves, regions, curves between no two regions) and what to change — a flat
+/// plane is never returned as a relief. `line_scale_px`: the line scale the curves were found at.
+void require_rising_regions(const DrawingCurves& curves, const DrawingInterpretation& di, double line_scale_px);
+
 }  // namespace reliefkit

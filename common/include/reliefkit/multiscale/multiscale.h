@@ -61,6 +61,10 @@ std::vector<double> noise_tilt_at_scales(const OptimalScale& scale, double final
 /// find features finer than the automatic pre-smoothing (a noisy scan's fine grooves).
 constexpr double kSameEdgeEdges = 2.0;
 constexpr double kFineScaleEdges = 6.0;
+/// The finest reading's ridges (valleys, edges) within kFlankReach x its pre-smoothing of a
+/// multi-scale valley (ridge, edge) are the blurred flanks of a finer feature, not features
+/// (drop_blurred_flanks).
+constexpr double kFlankReach = 2.0;
 enum class OtherScale { Finest, Wider };
 /// Adds to `curves` the segments of `other` (the finest or the wider reading) farther than
 /// kSameEdgeEdges from them, where the optimal scale is `other`'s; chains under min_length dropped.

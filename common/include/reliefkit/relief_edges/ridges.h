@@ -49,7 +49,20 @@ Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, dou
 Polylines select_ridge_lines(const Polylines& candidates, double threshold, const RidgeValleyParams& params,
                              double edge, double min_length);
 
-RidgeValleyResult compute_ridges_valleys(const Surface& surface, const RidgeValleyParams& params = {});
+/// What noise alone draws: the least thresholds (ridges, valleys) at which the lines of a noise
+/// patch (noise_patch(.., n), carrying the scan's noise), after the same pre-smoothing and the
+/// same selection (`params`' hysteresis, gaps, minimum length), keep no line in its interior;
+/// unit-free (|k| x edge length). The automatic thresholds stay above them.
+struct RidgeStrengths {
+  double ridges = 0, valleys = 0;
+};
+RidgeStrengths noise_ridge_strengths(const Surface& patch, int n, double presmoothing_edges,
+                                     const RidgeValleyParams& params);
+
+/// `noise_patch` (optional): noise_patch(scan's relative noise, noise_patch_cells(faces)) if the
+/// caller has one; otherwise one is made when the scan's noise is above kCleanNoise.
+RidgeValleyResult compute_ridges_valleys(const Surface& surface, const RidgeValleyParams& params = {},
+                                         const Surface* noise_patch = nullptr);
 RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyParams& params = {});
 
 }  // namespace reliefkit
