@@ -339,8 +339,9 @@ void require_rising_regions(const DrawingCurves& curves, const DrawingInterpreta
     msg << " (their ends are free: hatching, stippling or sketch strokes — or the two edges of an outline thicker "
            "than the line scale of "
         << line_scale_px << " px, traced as separate lines)";
-  msg << ". What to change: a Line scale of about half the width of the drawing's outlines in pixels (an 8-px "
-         "pen: 4); or close the gaps in broken outlines; or give the steps in an interpretation file.";
+  msg << ". What to change: a Line scale of about half the width of the drawing's lines in pixels (thin lines in a "
+         "small image: 1; an 8-px pen: 4); or close the gaps in broken outlines; or give the steps in an "
+         "interpretation file.";
   throw InputError(msg.str());
 }
 
