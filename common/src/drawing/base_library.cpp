@@ -100,14 +100,15 @@ std::vector<fs::path> model_files(const fs::path& root) {
   return files;
 }
 
-// One line of the cache: a model file's size, time, class and features.
+// One line of the cache: a model file's size, time, content hash, class and features.
 struct CacheEntry {
   uintmax_t size;
   long long time;
+  uint64_t hash;
   std::string kind;
   std::array<SilhouetteFeature, 3> f;
 };
-constexpr const char* kCacheHeader = "reliefkit-silhouettes 1";
+constexpr const char* kCacheHeader = "reliefkit-silhouettes 2";
 
 // The cache file's entries by relative path (none when it is missing or of another version).
 std::map<std::string, CacheEntry> read_feature_cache(const fs::path& path) {
@@ -120,7 +121,7 @@ std::map<std::string, CacheEntry> read_feature_cache(const fs::path& path) {
     std::string rel;
     CacheEntry c;
     if (!std::getline(ls, rel, '\t')) continue;
-    ls >> c.size >> c.time >> c.kind;
+    ls >> c.size >> c.time >> c.hash >> c.kind;
     bool ok = bool(ls);
     for (auto& f : c.f)
       for (auto& x : f) ok = ok && bool(ls >> x);
@@ -137,7 +138,7 @@ bool write_feature_cache(const fs::path& path, const fs::path& root, const std::
   for (size_t i = 0; i < files.size(); ++i) {
     if (!errors[i].empty()) continue;
     out << fs::relative(files[i], root).generic_string() << '\t' << entries[i].size << ' ' << entries[i].time << ' '
-        << entries[i].kind;
+        << entries[i].hash << ' ' << entries[i].kind;
     for (const auto& f : entries[i].f)
       for (float x : f) out << ' ' << x;
     out << '\n';
@@ -150,20 +151,43 @@ long long file_time(const fs::path& p) {
   return static_cast<long long>(fs::last_write_time(p, e).time_since_epoch().count());
 }
 
+// FNV-1a over the file's bytes.
+uint64_t content_hash(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  uint64_t h = 0xcbf29ce484222325ull;
+  char buf[1 << 16];
+  while (in) {
+    in.read(buf, sizeof buf);
+    for (std::streamsize i = 0; i < in.gcount(); ++i) h = (h ^ static_cast<unsigned char>(buf[i])) * 0x100000001b3ull;
+  }
+  return h;
+}
+
+// How a model's features were found: computed, or from the cache entry of a file whose date
+// changed but whose content did not (copied, installed, checked out: the cache is rewritten).
+struct CacheUse {
+  bool computed = false, redated = false;
+};
+
 // The library model of file p: its name, class (the sub-folder's name, or the name's part before
-// '_'), and features from the cache when its size and time match, else computed (`fresh`).
+// '_'), and features from the cache when its size and date match, or its size and content (a
+// copied library keeps its cache), else computed.
 LibraryModel library_model(const fs::path& p, const fs::path& root, const std::map<std::string, CacheEntry>& cache,
-                           CacheEntry& entry, bool& fresh) {
+                           CacheEntry& entry, CacheUse& use) {
   LibraryModel m;
   m.name = p.stem().string();
   m.path = p.string();
   const fs::path parent = fs::relative(p.parent_path(), root);
   m.kind = (parent.empty() || parent == ".") ? m.name.substr(0, m.name.find('_')) : parent.begin()->string();
   std::error_code e;
-  entry = CacheEntry{fs::file_size(p, e), file_time(p), m.kind, {}};
+  entry = CacheEntry{fs::file_size(p, e), file_time(p), 0, m.kind, {}};
   const auto hit = cache.find(fs::relative(p, root).generic_string());
-  fresh = !(hit != cache.end() && hit->second.size == entry.size && hit->second.time == entry.time);
-  m.feature = fresh ? model_features(normalize_to_principal_axes(read_model_file(p.string()))) : hit->second.f;
+  const bool same_size = hit != cache.end() && hit->second.size == entry.size;
+  const bool same_date = same_size && hit->second.time == entry.time;
+  entry.hash = same_date ? hit->second.hash : content_hash(p);
+  use.computed = !(same_date || (same_size && hit->second.hash == entry.hash));
+  use.redated = !use.computed && !same_date;
+  m.feature = use.computed ? model_features(normalize_to_principal_axes(read_model_file(p.string()))) : hit->second.f;
   entry.f = m.feature;
   return m;
 }
@@ -178,15 +202,13 @@ void add_library_folder(BaseLibrary& library, const std::string& folder, Progres
   const auto cache = read_feature_cache(cache_path);
   std::vector<LibraryModel> models(files.size());
   std::vector<std::string> errors(files.size());
-  std::vector<char> fresh(files.size(), 0);
+  std::vector<CacheUse> uses(files.size());
   std::vector<CacheEntry> entries(files.size());
   long done = 0;
 #pragma omp parallel for schedule(dynamic)
   for (long i = 0; i < long(files.size()); ++i) {
     try {
-      bool computed = false;
-      models[size_t(i)] = library_model(files[size_t(i)], root, cache, entries[size_t(i)], computed);
-      fresh[size_t(i)] = computed;
+      models[size_t(i)] = library_model(files[size_t(i)], root, cache, entries[size_t(i)], uses[size_t(i)]);
     } catch (const std::exception& ex) {
       errors[size_t(i)] = ex.what();
     }
@@ -196,23 +218,29 @@ void add_library_folder(BaseLibrary& library, const std::string& folder, Progres
       if (progress && omp_get_thread_num() == 0) progress(int(100 * done / std::max<long>(1, long(files.size()))), "Reading the model library");
     }
   }
-  int skipped = 0, computed = 0;
+  int skipped = 0, computed = 0, redated = 0;
   for (size_t i = 0; i < files.size(); ++i) {
     if (!errors[i].empty()) {
       if (++skipped <= 5) library.notes.push_back("Skipped: " + errors[i]);
       continue;
     }
-    computed += fresh[i];
+    computed += uses[i].computed;
+    redated += uses[i].redated;
     library.models.push_back(models[i]);
   }
   if (skipped > 5) library.notes.push_back("Skipped " + std::to_string(skipped - 5) + " more unreadable models.");
-  if (computed == 0 && cache.size() == files.size() - size_t(skipped)) return;
-  if (write_feature_cache(cache_path, root, files, entries, errors))
-    library.notes.push_back("Silhouette features of " + std::to_string(computed) + " models computed and cached in " +
-                            cache_path.string() + ".");
-  else
-    library.notes.push_back("Silhouette features of " + std::to_string(computed) + " models computed (the folder " +
-                            folder + " is not writable: they are not cached).");
+  if (computed == 0 && redated == 0 && cache.size() == files.size() - size_t(skipped)) return;
+  const bool written = write_feature_cache(cache_path, root, files, entries, errors);
+  const std::string n = std::to_string(computed);
+  if (computed > 0 && written)
+    library.notes.push_back("Silhouette features of " + n + " models computed and cached in " + cache_path.string() + ".");
+  else if (computed > 0)
+    library.notes.push_back("Silhouette features of " + n + " models computed (the folder " + folder +
+                            " is not writable: they are not cached).");
+  else if (redated > 0)
+    library.notes.push_back("Silhouette cache of " + folder + " used: " + std::to_string(redated) +
+                            " model files have new dates but the same content (a copied library)" +
+                            (written ? "; the dates recorded." : "; the folder is not writable."));
 }
 
 }  // namespace reliefkit

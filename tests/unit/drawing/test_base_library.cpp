@@ -4,6 +4,7 @@
 // goblet (fig. 7.10), the model folder and its cache, bad input.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -334,6 +335,25 @@ TEST(BaseLibrary, ModelFolderAndItsCache) {
   for (const auto& n : again.notes) EXPECT_EQ(n.find("computed"), std::string::npos) << n;
   for (const auto& m : again.models)
     for (int k = 0; k < 3; ++k) EXPECT_LT(feature_distance(m.feature[size_t(k)], by[m.name].feature[size_t(k)]), 1e-6);
+  // A copy of the folder with new file dates (as cp, an install or a checkout makes them) keeps the
+  // cache: matched by content, nothing computed, the new dates recorded.
+  const fs::path copy = dir.string() + "_copy";
+  fs::remove_all(copy);
+  fs::copy(dir, copy, fs::copy_options::recursive);
+  for (const auto& e : fs::recursive_directory_iterator(copy))
+    if (e.is_regular_file()) fs::last_write_time(e.path(), fs::last_write_time(e.path()) + std::chrono::hours(1));
+  BaseLibrary copied;
+  add_library_folder(copied, copy.string());
+  ASSERT_EQ(copied.models.size(), 3u);
+  bool matched = false;
+  for (const auto& n : copied.notes) {
+    EXPECT_EQ(n.find("computed"), std::string::npos) << n;
+    matched |= n.find("same content") != std::string::npos;
+  }
+  EXPECT_TRUE(matched);
+  for (const auto& m : copied.models)
+    for (int k = 0; k < 3; ++k) EXPECT_LT(feature_distance(m.feature[size_t(k)], by[m.name].feature[size_t(k)]), 1e-6);
+  fs::remove_all(copy);
   // An empty folder gives no model; a missing one is an error.
   fs::create_directories(dir / "empty");
   BaseLibrary none;

@@ -144,8 +144,8 @@ TriMesh read_model_file(const std::string& path);
 void write_model_ply(const std::string& path, const TriMesh& mesh);  // binary PLY
 /// Every model file in `folder` (and its sub-folders, whose names become classes). Features
 /// come from the cache file kFeatureCache in the folder when it is up to date (file sizes and
-/// times match), otherwise they are computed and the cache rewritten (if the folder is
-/// writable). Unreadable files are skipped with a note. Throws InputError for a missing folder.
+/// dates match, or sizes and contents: a copied or installed library keeps its cache), otherwise
+/// they are computed and the cache rewritten (if the folder is writable). Unreadable files are skipped with a note. Throws InputError for a missing folder.
 constexpr const char* kFeatureCache = "reliefkit-silhouettes.cache";
 void add_library_folder(BaseLibrary& library, const std::string& folder, Progress progress = nullptr);
 
