@@ -167,6 +167,31 @@ TEST(DrawingInterpretation, OfTwoPartsAsNearTheGroundTheSmallerStandsOnTheLarger
   }
 }
 
+// A reading in which no region rises would give a flat plane: it is refused, saying what was found.
+// Hatching alone (strokes with free ends) closes no region; one closed outline lifts its inside.
+TEST(DrawingInterpretation, AReadingWhereNothingRisesIsRefusedWithWhatWasFound) {
+  cv::Mat hatching(300, 300, CV_8UC1, cv::Scalar(255));
+  for (int k = 0; k < 8; ++k) cv::line(hatching, {60 + 25 * k, 60}, {40 + 25 * k, 240}, cv::Scalar(0), 2, cv::LINE_AA);
+  const DrawingCurves strokes = extract_drawing_curves(hatching);
+  const DrawingInterpretation flat = interpret_drawing(strokes);
+  EXPECT_EQ(rising_regions(flat), 0);
+  try {
+    require_rising_regions(strokes, flat, 2.0);
+    ADD_FAILURE() << "a flat reading was accepted";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("No region of the drawing rises"), std::string::npos) << what;
+    EXPECT_NE(what.find("ends are free"), std::string::npos) << what;
+    EXPECT_NE(what.find("Line scale"), std::string::npos) << what;
+  }
+  cv::Mat disc(300, 300, CV_8UC1, cv::Scalar(255));
+  cv::circle(disc, {150, 150}, 100, cv::Scalar(0), 2, cv::LINE_AA);
+  const DrawingCurves outline = extract_drawing_curves(disc);
+  const DrawingInterpretation raised = interpret_drawing(outline);
+  EXPECT_EQ(rising_regions(raised), 1);
+  EXPECT_NO_THROW(require_rising_regions(outline, raised, 2.0));
+}
+
 #include <nlohmann/json.hpp>
 
 #include "reliefkit/drawing/drawing_file.h"
