@@ -326,6 +326,8 @@ double percentile(std::vector<double> values, double q) {
 
 namespace reliefkit {
 
+int noise_patch_margin(double presmoothing_edges) { return 3 + static_cast<int>(std::ceil(2 * presmoothing_edges)); }
+
 bool inside_noise_patch(int v, int n, int margin) {
   const int i = v % (n + 1), j = v / (n + 1);
   return i >= margin && j >= margin && i <= n - margin && j <= n - margin;

@@ -101,7 +101,7 @@ double noise_curve_strength(const NoiseEstimate& noise, double presmoothing_edge
   const CurvatureGradient g = curvature_gradient(sc.curvature);
   DemarcatingOptions o;
   const Polylines all = demarcating_curves(patch, sc.curvature, g, o);
-  const int margin = 3 + static_cast<int>(std::ceil(2 * presmoothing_edges));
+  const int margin = noise_patch_margin(presmoothing_edges);
   const double unit = sc.scale.edge;  // patch edge -> strengths per edge length squared
   return kNoiseCurveFactor * percentile(interior_segment_strengths(all, n, margin), kNoiseCurvePercentile) * unit * unit;
 }

@@ -181,14 +181,16 @@ void add_finest_scale_lines(const Surface& surface, RidgeValleyParams params, co
   // The finest lines' strengths as the multi-scale ones' ((σ / h)² |k| h, γ = 1), σ their
   // pre-smoothing, at least the smallest scale of the range.
   const double sigma = std::max(finest.presmoothing, scale.levels.front()) / h;
-  const Polylines multi_ridges = multi.ridges, multi_valleys = multi.valleys;
-  for (bool valleys : {false, true}) {
-    Polylines lines = valleys ? finest.valleys : finest.ridges;
-    for (double& x : lines.strength) x *= sigma * sigma * h;
-    drop_blurred_flanks(lines, valleys ? multi_ridges : multi_valleys, finest.presmoothing, multi.min_length);
+  // Both kinds' flanks are judged against the multi-scale lines before either is joined to them.
+  Polylines lines[2] = {finest.ridges, finest.valleys};
+  for (int valleys : {0, 1}) {
+    for (double& x : lines[valleys].strength) x *= sigma * sigma * h;
+    drop_blurred_flanks(lines[valleys], valleys ? multi.ridges : multi.valleys, finest.presmoothing, multi.min_length);
+  }
+  for (int valleys : {0, 1}) {
     Polylines& wider = valleys ? multi.valleys : multi.ridges;
-    add_other_scale(lines, wider, OtherScale::Wider, scale, multi.min_length);
-    wider = std::move(lines);
+    add_other_scale(lines[valleys], wider, OtherScale::Wider, scale, multi.min_length);
+    wider = std::move(lines[valleys]);
   }
 }
 

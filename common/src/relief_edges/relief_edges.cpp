@@ -57,7 +57,7 @@ double noise_tilt(const NoiseEstimate& noise, double presmoothing_edges, int n) 
 double noise_tilt(const Surface& patch, int n, double presmoothing_edges) {
   if (!(presmoothing_edges >= 0 && presmoothing_edges <= 100)) return 0;
   const ScaledCurvature sc = curvature_at_scale(patch, Length::in_edges(presmoothing_edges), CurvatureEstimator::Jet, nullptr);
-  const int margin = 3 + static_cast<int>(std::ceil(2 * presmoothing_edges));
+  const int margin = noise_patch_margin(presmoothing_edges);
   std::vector<double> tilt;
   for (int v = 0; v < patch.n_vertices(); ++v) {
     if (!inside_noise_patch(v, n, margin)) continue;

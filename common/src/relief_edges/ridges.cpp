@@ -86,7 +86,7 @@ RidgeStrengths noise_ridge_strengths(const Surface& patch, int n, double presmoo
   co.derivatives = true;
   co.topology = &patch.topology();
   const Curvature c = compute_curvature(patch.mesh(), co);
-  const int margin = 3 + static_cast<int>(std::ceil(2 * presmoothing_edges));
+  const int margin = noise_patch_margin(presmoothing_edges);
   auto floor = [&](bool valleys) {
     const Polylines all = ridge_lines(patch.mesh(), c, valleys, 0.0);
     return kNoiseCurveFactor * quiet_threshold(select_segments(all, interior_segments(all, n, margin)), p, edge) * edge;

@@ -118,6 +118,10 @@ double percentile(std::vector<double> values, double q);
 
 namespace reliefkit {
 
+/// The rim of the noise patch, in cells, that its statistics leave out after pre-smoothing of
+/// `presmoothing_edges` edge lengths (the smoothing and the fits are one-sided there).
+int noise_patch_margin(double presmoothing_edges);
+
 /// Whether vertex `v` of noise_patch(.., n) lies at least `margin` cells inside the patch (its
 /// border has one-sided fits and is no model of a scan's interior).
 bool inside_noise_patch(int v, int n, int margin);
