@@ -1,0 +1,37 @@
+// Synthetic pottery drawings in the half-section convention with a known profile (tests and the
+// benchmark of reliefkit/drawing/vessel_profile.h).
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "reliefkit/base/mesh.h"
+
+namespace rktest {
+
+enum class SectionStyle { Filled, Outlined, Hatched };
+
+struct VesselDrawingOptions {
+  SectionStyle style = SectionStyle::Filled;
+  bool axis_line = true;   // a thin vertical axis drawn through the vessel
+  bool rim = true;         // false: the top is a break below the rim
+  bool base = true;        // false: the bottom is a break above the base (the base is missing)
+  bool section_left = true;
+  int line_px = 2;
+};
+
+/// A jar 420 px high (rim at y = 60, base at y = 480) on a 640 x 560 image, its axis at x = 320:
+/// the wall's section (14 px thick, the base too) on one side, the exterior outline on the other,
+/// the rim line across the mouth.
+struct VesselDrawing {
+  cv::Mat image;                         // 8-bit grey
+  double axis_x = 320;
+  double height = 420;                   // px, of the vessel as drawn (rim or break to base or break)
+  std::vector<reliefkit::Vec2> section;  // the true section in (radius, height = -y), px, closed
+};
+VesselDrawing vessel_drawing(const VesselDrawingOptions& options = {});
+
+/// Distance (same units) from q to the closed polygon.
+double distance_to_polygon(const reliefkit::Vec2& q, const std::vector<reliefkit::Vec2>& polygon);
+
+}  // namespace rktest

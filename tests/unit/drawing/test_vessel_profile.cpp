@@ -1,0 +1,172 @@
+// Vessels from profile drawings (reliefkit/drawing/vessel_profile.h): synthetic half-sections with a
+// known profile — filled, outlined and hatched sections, with and without a drawn axis, open rims
+// and missing bases — and the shared pottery drawing.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <map>
+#include <opencv2/imgproc.hpp>
+
+#include "reliefkit/drawing/line_drawing.h"
+#include "reliefkit/drawing/vessel_profile.h"
+#include "vessels.h"
+
+using namespace reliefkit;
+using rktest::SectionStyle;
+using rktest::VesselDrawingOptions;
+
+namespace {
+
+// In the plane of the section (radius, height): along the walls the distance is the radius error,
+// across the rim and the base the height error.
+struct VesselFit {
+  double worst_off = 0;     // px: the farthest vertex of the vessel from the true section
+  double worst_missed = 0;  // px: the farthest point of the true section from the revolved profile
+  double worst() const { return std::max(worst_off, worst_missed); }
+  bool closed_surface = false;
+};
+
+// The vessel in (radius, height) against the true section, both ways, in pixels.
+VesselFit fit(const TriMesh& m, const VesselProfile& p, const std::vector<Vec2>& truth) {
+  VesselFit f;
+  for (const Vec3& v : m.vertices) {
+    const Vec2 rh(std::hypot(v.x() - p.axis_x, v.z()), v.y());
+    f.worst_off = std::max(f.worst_off, rktest::distance_to_polygon(rh, truth));
+  }
+  const std::vector<Vec2> profile = vessel_profile_section(p, 1.0);
+  for (const Vec2& q : truth) f.worst_missed = std::max(f.worst_missed, rktest::distance_to_polygon(q, profile));
+  std::printf("[vessel] farthest vertex %.2f px, farthest missed %.2f px\n", f.worst_off, f.worst_missed);
+  std::map<std::pair<int, int>, int> edges;
+  for (const auto& t : m.faces)
+    for (int k = 0; k < 3; ++k) ++edges[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
+  f.closed_surface = std::all_of(edges.begin(), edges.end(), [](const auto& e) { return e.second == 2; });
+  return f;
+}
+
+double signed_volume(const TriMesh& m) {
+  double v = 0;
+  for (const auto& t : m.faces)
+    v += m.vertices[size_t(t[0])].dot(m.vertices[size_t(t[1])].cross(m.vertices[size_t(t[2])])) / 6;
+  return v;
+}
+
+// Pappus: the volume swept by the closed section (radius, height) round the axis.
+double swept_volume(const std::vector<Vec2>& s) {
+  double v = 0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    const Vec2 a = s[i], b = s[(i + 1) % s.size()];
+    v += (a.x() * b.y() - b.x() * a.y()) * (a.x() + b.x());  // 6 x the area's first moment in r
+  }
+  return std::abs(v) / 6 * 2 * M_PI;
+}
+
+VesselProfile read(const rktest::VesselDrawing& d, VesselParams vp = {}) { return read_vessel_profile(d.image, vp); }
+
+}  // namespace
+
+TEST(VesselProfile, EachSectionStyleGivesTheDrawnProfileWithinOnePercentOfTheHeight) {
+  const std::pair<SectionStyle, VesselSectionKind> styles[] = {{SectionStyle::Filled, VesselSectionKind::Filled},
+                                                               {SectionStyle::Outlined, VesselSectionKind::Outlined},
+                                                               {SectionStyle::Hatched, VesselSectionKind::Hatched}};
+  for (const auto& [style, kind] : styles) {
+    VesselDrawingOptions o;
+    o.style = style;
+    const rktest::VesselDrawing d = rktest::vessel_drawing(o);
+    const VesselProfile p = read(d);
+    SCOPED_TRACE(vessel_summary(p, 1, "px"));
+    EXPECT_EQ(p.kind, kind);
+    EXPECT_EQ(p.side, VesselSide::Left);
+    EXPECT_EQ(p.axis_source, VesselAxisSource::DrawnLine);
+    EXPECT_NEAR(p.axis_x, d.axis_x, 1.0);
+    EXPECT_EQ(p.axis_gap, 0);  // the base closes on the axis
+    const TriMesh m = revolve_vessel_profile(p, {});
+    const VesselFit f = fit(m, p, d.section);
+    EXPECT_LE(f.worst(), 0.01 * d.height);
+    EXPECT_TRUE(f.closed_surface);
+    // A pixel of the 14-px wall is 7 % of its volume: the outline's centre is found to about a pixel.
+    const double volume_ratio = signed_volume(m) / swept_volume(d.section);
+    std::printf("[vessel] volume / true volume %.3f\n", volume_ratio);
+    EXPECT_NEAR(volume_ratio, 1.0, 0.12);
+  }
+}
+
+TEST(VesselProfile, SectionOnTheRightAndNoAxisLine) {
+  VesselDrawingOptions o;
+  o.section_left = false, o.axis_line = false, o.base = false, o.style = SectionStyle::Outlined;
+  const rktest::VesselDrawing d = rktest::vessel_drawing(o);
+  const VesselProfile p = read(d);
+  EXPECT_EQ(p.side, VesselSide::Right);
+  EXPECT_EQ(p.axis_source, VesselAxisSource::MiddleOfDrawing);
+  EXPECT_NEAR(p.axis_x, d.axis_x, 1.5);
+  const VesselFit f = fit(revolve_vessel_profile(p, {}), p, d.section);
+  EXPECT_LE(f.worst(), 0.01 * d.height);
+}
+
+TEST(VesselProfile, MissingBaseOrRimStaysOpenWhereTheDrawingEnds) {
+  for (const bool rim : {true, false}) {
+    VesselDrawingOptions o;
+    o.rim = rim, o.base = false;
+    const rktest::VesselDrawing d = rktest::vessel_drawing(o);
+    const VesselProfile p = read(d);
+    SCOPED_TRACE(vessel_summary(p, 1, "px"));
+    EXPECT_GT(p.axis_gap, 50);  // the wall ends 86 px from the axis
+    EXPECT_NE(vessel_summary(p, 1).find("the base is not drawn"), std::string::npos);
+    EXPECT_NEAR(p.bottom_y - p.top_y, d.height, 0.01 * d.height);
+    const TriMesh m = revolve_vessel_profile(p, {});
+    const VesselFit f = fit(m, p, d.section);
+    EXPECT_LE(f.worst(), 0.01 * d.height);
+    EXPECT_TRUE(f.closed_surface);  // a ring of wall: nothing invented across the missing base
+  }
+}
+
+TEST(VesselProfile, GivenAxisAndSideAreKeptAndMillimetresFollowThePixelSize) {
+  const rktest::VesselDrawing d = rktest::vessel_drawing();
+  VesselParams vp;
+  vp.axis_x = d.axis_x, vp.side = VesselSide::Left, vp.pixel_size = 0.25, vp.segments = 64;
+  const VesselProfile p = read_vessel_profile(d.image, vp);
+  EXPECT_EQ(p.axis_source, VesselAxisSource::Given);
+  const TriMesh m = revolve_vessel_profile(p, vp);
+  double top = -1e300, bottom = 1e300;
+  for (const Vec3& v : m.vertices) top = std::max(top, v.y()), bottom = std::min(bottom, v.y());
+  EXPECT_NEAR(top - bottom, 0.25 * d.height, 0.01 * 0.25 * d.height);
+  EXPECT_EQ(m.n_vertices() % 64, 2);  // rings of 64 and the base's two points on the axis
+  vp.side = VesselSide::Right;  // no section there: the exterior line is read as a profile
+  const VesselProfile right = read_vessel_profile(d.image, vp);
+  EXPECT_EQ(right.kind, VesselSectionKind::ProfileLine);
+  EXPECT_FALSE(right.closed);
+}
+
+TEST(VesselProfile, ThePotteryBowlHalfSection) {
+  const cv::Mat img = read_drawing_image(RELIEFKIT_TEST_DRAWINGS "/pottery_bowl_half_section.jpg");
+  const VesselProfile p = read_vessel_profile(img, {});
+  SCOPED_TRACE(vessel_summary(p, 1, "px"));
+  // Measured on the image: the axis stub at x = 921, the rim's outer edge at x = 88, the section
+  // on the left, the base broken off about 200 px from the axis.
+  EXPECT_EQ(p.kind, VesselSectionKind::Outlined);
+  EXPECT_EQ(p.side, VesselSide::Left);
+  EXPECT_EQ(p.axis_source, VesselAxisSource::DrawnLine);
+  EXPECT_NEAR(p.axis_x, 921, 3);
+  EXPECT_NEAR(p.rim_radius, 921 - 88, 0.01 * 833);
+  EXPECT_GT(p.axis_gap, 150);
+  EXPECT_GT(p.wall_thickness, 20);
+  EXPECT_LT(p.wall_thickness, 80);
+}
+
+TEST(VesselProfile, BadDrawingsStopWithAClearMessage) {
+  auto message = [](const cv::Mat& img, VesselParams vp = {}) {
+    try {
+      read_vessel_profile(img, vp);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message(cv::Mat(200, 300, CV_8UC1, cv::Scalar(255))).find("blank"), std::string::npos);
+  EXPECT_NE(message(cv::Mat(200, 300, CV_8UC1, cv::Scalar(0))).find("dark"), std::string::npos);
+  cv::Mat line(200, 300, CV_8UC1, cv::Scalar(255));
+  cv::line(line, {20, 100}, {280, 100}, cv::Scalar(0), 2);
+  EXPECT_NE(message(line).find("No vessel profile"), std::string::npos);
+  VesselParams outside;
+  outside.axis_x = 5000;
+  EXPECT_NE(message(rktest::vessel_drawing().image, outside).find("outside the drawing"), std::string::npos);
+}
