@@ -66,10 +66,12 @@ void drawing_parameters(RichParameterList& par) {
   par.addParam(RichOpenFile("drawing", "", kImageExts, "Drawing image",
                             "The scanned line drawing: dark lines on light paper (PNG, JPEG, TIFF, BMP; grey, colour "
                             "or RGBA with a transparent background)."));
-  par.addParam(RichFloat("sigma", 2.f, "Line scale (px)",
-                         "Standard deviation of the Gaussian that smooths the image before lines are found (thesis: "
-                         "2 px). About the lines' half-width: 2 suits drawings scanned at 300 dpi; take 1 for thin "
-                         "lines in small images, more for thick pen lines."));
+  par.addParam(RichFloat("sigma", 0.f, "Line scale (px, 0: auto)",
+                         "Standard deviation of the Gaussian that smooths the image before lines are found, about the "
+                         "lines' half-width. 0 (automatic): each line at the scale of its own width (1, 2, 4 or 8 px), "
+                         "so a heavy outline and thin scar lines or hatching in one drawing are each found at their "
+                         "centres; each curve's width is recorded and sets how far its ends reach to close a region. "
+                         "A number: that one scale for every line (the thesis: 2 px)."));
   par.addParam(RichFloat("min_length", 12.f, "Shortest stroke (px)",
                          "Strokes shorter than this are taken for shading (stippling, hatching) and dropped."));
   par.addParam(RichFloat("dpi", 300.f, "Drawing resolution (DPI)",
@@ -90,7 +92,9 @@ struct Drawing {
 Drawing read_drawing(FilterCall& call) {
   Drawing d;
   d.path = call.params.getOpenFileName("drawing");
-  d.detection.sigma = read_float(call, "sigma", "Line scale (px)", 0.5, 50);
+  d.detection.sigma = read_float(call, "sigma", "Line scale (px, 0: auto)", 0, 50);
+  if (d.detection.sigma > 0 && d.detection.sigma < 0.5)
+    throw InputError("Line scale (px, 0: auto): 0 for automatic, or at least 0.5 px.");
   d.detection.min_length = read_float(call, "min_length", "Shortest stroke (px)", 0, 1e6);
   const double dpi = read_float(call, "dpi", "Drawing resolution (DPI)", 1, 100000);
   const double scale = read_float(call, "scale", "Drawing scale (object : drawing)", 1e-6, 1e6);
@@ -108,11 +112,11 @@ Drawing read_drawing(FilterCall& call) {
   d.curves = extract_drawing_curves(d.image, d.detection);
   if (d.curves.curves.empty())
     throw InputError(QString("No lines were found in \"%1\" (%2 x %3 px): the image is blank, or its lines are lighter or "
-                             "shorter than the line detection takes (Line scale %4 px, Shortest stroke %5 px).")
+                             "shorter than the line detection takes (Line scale %4, Shortest stroke %5 px).")
                          .arg(QFileInfo(d.path).fileName())
                          .arg(d.image.cols)
                          .arg(d.image.rows)
-                         .arg(d.detection.sigma)
+                         .arg(d.detection.sigma > 0 ? QString::number(d.detection.sigma) + " px" : QString("automatic"))
                          .arg(d.detection.min_length)
                          .toStdString());
   return d;

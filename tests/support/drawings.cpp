@@ -91,6 +91,67 @@ void add_shading(cv::Mat& img, cv::Rect area, double stroke, double spacing) {
       cv::circle(img, cv::Point(int(x), int(y)), 1, cv::Scalar(0), -1, cv::LINE_AA);
 }
 
+namespace {
+// Inside `poly`, at least `clearance` px from its edge (negative: up to -clearance px outside it).
+cv::Mat interior(cv::Size size, const std::vector<cv::Point>& poly, double clearance) {
+  cv::Mat m(size, CV_8U, cv::Scalar(0));
+  cv::fillPoly(m, std::vector<std::vector<cv::Point>>{poly}, cv::Scalar(255));
+  const int d = 2 * int(std::ceil(std::abs(clearance))) + 1;
+  const cv::Mat disc = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(d, d));
+  if (clearance >= 0) cv::erode(m, m, disc); else cv::dilate(m, m, disc);
+  return m;
+}
+}  // namespace
+
+ShadedTool shaded_tool_drawing(int outline_px, double clearance) {
+  cv::Mat img(900, 700, CV_8UC1, cv::Scalar(255));
+  std::vector<cv::Point> tool, scar;
+  for (int k = 0; k < 240; ++k) {
+    const double t = 2 * M_PI * k / 240;
+    tool.emplace_back(int(350 + 250 * std::cos(t) + 20 * std::cos(3 * t)), int(450 + 360 * std::sin(t) + 15 * std::sin(2 * t)));
+    scar.emplace_back(int(360 + 120 * std::cos(t)), int(560 + 150 * std::sin(t) + 10 * std::sin(3 * t)));
+  }
+  for (int k = 0; k < 14; ++k)  // ripple hatching: short curved strokes with free ends
+    cv::ellipse(img, {340, 170 + 9 * k}, {70, 30}, 0, 200, 340, cv::Scalar(40), 1, cv::LINE_AA);
+  cv::RNG rng(3);
+  for (int k = 0; k < 300; ++k)  // stippling inside the scar
+    cv::circle(img, {rng.uniform(300, 420), rng.uniform(500, 620)}, 1, cv::Scalar(20), -1, cv::LINE_AA);
+  cv::polylines(img, std::vector<std::vector<cv::Point>>{scar}, true, cv::Scalar(0), 2, cv::LINE_AA);
+  cv::Mat across(img.size(), CV_8U, cv::Scalar(0)), inside(img.size(), CV_8U, cv::Scalar(0));
+  cv::line(across, {60, 300}, {640, 330}, cv::Scalar(255), 3, cv::LINE_AA);  // a line across the tool, ending on its outline
+  cv::fillPoly(inside, std::vector<std::vector<cv::Point>>{tool}, cv::Scalar(255));
+  img.setTo(0, across & inside);
+  cv::polylines(img, std::vector<std::vector<cv::Point>>{tool}, true, cv::Scalar(0), outline_px, cv::LINE_AA);
+  ShadedTool out;
+  out.tool = interior(img.size(), tool, clearance + 0.5 * outline_px) & ~interior(img.size(), scar, -clearance);
+  out.scar = interior(img.size(), scar, clearance);
+  cv::Mat paper = img * 0.9 + 14;  // off-white
+  out.image = paper_and_jpeg(paper, 0.02, 75);
+  return out;
+}
+
+ShadedTool scarred_flake_drawing(double clearance) {
+  cv::Mat img(900, 700, CV_8UC1, cv::Scalar(255));
+  std::vector<cv::Point> outline;
+  for (int k = 0; k < 200; ++k) {
+    const double t = 2 * M_PI * k / 200;
+    outline.emplace_back(int(350 + 250 * std::cos(t) + 20 * std::cos(3 * t)), int(450 + 360 * std::sin(t) + 15 * std::sin(2 * t)));
+  }
+  cv::line(img, {150, 250}, {560, 330}, cv::Scalar(0), 3, cv::LINE_AA);
+  cv::line(img, {130, 560}, {580, 620}, cv::Scalar(0), 3, cv::LINE_AA);
+  cv::line(img, {350, 290}, {360, 590}, cv::Scalar(0), 3, cv::LINE_AA);
+  for (int k = 0; k < 14; ++k) cv::ellipse(img, {340, 150 + 8 * k}, {60, 30}, 0, 200, 340, cv::Scalar(60), 1, cv::LINE_AA);
+  cv::RNG rng(3);
+  for (int k = 0; k < 400; ++k) cv::circle(img, {rng.uniform(400, 540), rng.uniform(660, 760)}, 1, cv::Scalar(30), -1, cv::LINE_AA);
+  cv::polylines(img, std::vector<std::vector<cv::Point>>{outline}, true, cv::Scalar(0), 8, cv::LINE_AA);
+  ShadedTool out;
+  out.tool = interior(img.size(), outline, clearance + 4);
+  out.scar = cv::Mat(img.size(), CV_8U, cv::Scalar(0));
+  cv::Mat paper = img * 0.92 + 12;
+  out.image = paper_and_jpeg(paper, 0.02, 75);
+  return out;
+}
+
 cv::Mat paper_and_jpeg(const cv::Mat& grey8, double sigma, int quality) {
   cv::Mat f;
   grey8.convertTo(f, CV_32F, 1.0 / 255);

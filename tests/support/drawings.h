@@ -30,6 +30,22 @@ int nested_true_level(const reliefkit::Vec2& p, bool right_half_higher, double s
 /// over its right half; neither must become curves.
 void add_shading(cv::Mat& img, cv::Rect area, double stroke_px = 8, double spacing_px = 6);
 
+/// A stone tool as hand drawings show it (issue 23): a heavy closed outline `outline_px` wide, a
+/// 3-px line across it ending on the outline at both ends (T-junctions), a scar below it closed by a
+/// thin (2 px) line, dense ripple hatching in the tool's upper part and stippling inside the scar, on
+/// off-white paper with noise and JPEG compression (q75), 700 x 900 px. Known: the tool's two parts
+/// rise (level 1 or more; which stands on which the drawing does not say), the scar stands on its
+/// part (one level more). `tool` and `scar` mark their interiors (255), each `clearance` px from its lines.
+struct ShadedTool {
+  cv::Mat image, tool, scar;
+};
+ShadedTool shaded_tool_drawing(int outline_px = 8, double clearance = 8);
+
+/// A flake with an 8-px outline whose thin (3 px) scar lines start on it (T-junctions where the
+/// outline's detection fades into short pieces), ripple hatching and a stippled cortex; `tool`
+/// marks its interior `clearance` px inside the outline (`scar` is empty).
+ShadedTool scarred_flake_drawing(double clearance = 8);
+
 /// Paper texture (Gaussian noise, `sigma` of the white level) and JPEG compression at `quality`.
 cv::Mat paper_and_jpeg(const cv::Mat& grey8, double sigma, int quality);
 

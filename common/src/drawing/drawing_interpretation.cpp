@@ -3,6 +3,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <unordered_map>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -85,26 +86,59 @@ std::vector<CurveOverride::Direction> apply_overrides(const std::vector<CurveOve
   return direction;
 }
 
+// How far an end of curve k is extended: `gap_close`, or 1.25 x its line's width + 1.5 px (2.5 sigma
+// + 1.5, over which line detection fades at a junction) for a wider line.
+double end_reach(const DrawingCurves& dc, size_t k, double gap_close) {
+  return k < dc.line_width.size() ? std::max(gap_close, 1.25 * dc.line_width[k] + 1.5) : gap_close;
+}
+
+cv::Point pixel_of(const Vec2& q) { return cv::Point(int(std::lround(q.x())), int(std::lround(q.y()))); }
+
+// Ends of different curves within reach of each other (the smaller reach) joined by a segment: two
+// extensions aimed past each other at a junction would leave a gap (grid of cell `cell`).
+void bridge_near_ends(cv::Mat& ink, const std::vector<std::pair<Vec2, double>>& ends, const std::vector<size_t>& owner,
+                      double cell) {
+  std::unordered_map<long long, std::vector<size_t>> grid;
+  auto key = [&](double x, double y) { return (long long)std::floor(x / cell) * 1000003LL + (long long)std::floor(y / cell); };
+  for (size_t i = 0; i < ends.size(); ++i) grid[key(ends[i].first.x(), ends[i].first.y())].push_back(i);
+  for (size_t i = 0; i < ends.size(); ++i)
+    for (int ox = -1; ox <= 1; ++ox)
+      for (int oy = -1; oy <= 1; ++oy) {
+        const auto it = grid.find(key(ends[i].first.x() + ox * cell, ends[i].first.y() + oy * cell));
+        if (it == grid.end()) continue;
+        for (size_t j : it->second)
+          if (j > i && owner[j] != owner[i] &&
+              (ends[i].first - ends[j].first).norm() <= std::min(ends[i].second, ends[j].second))
+            cv::line(ink, pixel_of(ends[i].first), pixel_of(ends[j].first), cv::Scalar(255), 2, cv::LINE_8);
+      }
+}
+
 // The curves drawn 2 px wide. Line detection fades where curves meet (a junction's profile is no
-// line's): each end is extended along its direction by `gap_close`, so that touching shapes close
-// their regions.
+// line's): each end is extended along its direction by its reach (end_reach), and ends within reach
+// of each other are joined, so that touching shapes close their regions.
 cv::Mat curve_ink(const DrawingCurves& dc, double gap_close) {
   cv::Mat ink(dc.height, dc.width, CV_8U, cv::Scalar(0));
-  auto pixel = [](const Vec2& q) { return cv::Point(int(std::lround(q.x())), int(std::lround(q.y()))); };
-  for (const auto& c : dc.curves) {
+  std::vector<std::pair<Vec2, double>> ends;
+  std::vector<size_t> owner;
+  double cell = 1;
+  for (size_t k = 0; k < dc.curves.size(); ++k) {
+    const auto& c = dc.curves[k];
     std::vector<cv::Point> pts;
-    for (const auto& q : c) pts.push_back(pixel(q));
+    for (const auto& q : c) pts.push_back(pixel_of(q));
     cv::polylines(ink, pts, false, cv::Scalar(255), 2, cv::LINE_8);
     if (c.size() < 2 || !(gap_close > 0)) continue;
+    const double reach = end_reach(dc, k, gap_close);
     for (int e = 0; e < 2; ++e) {
       const Vec2 a = e ? c[c.size() - 1] : c[0];
       const Vec2 b = e ? c[std::max<size_t>(0, c.size() >= 4 ? c.size() - 4 : 0)] : c[std::min<size_t>(3, c.size() - 1)];
+      ends.emplace_back(a, reach), owner.push_back(k), cell = std::max(cell, reach);
       Vec2 d = a - b;
       if (!(d.norm() > 0)) continue;
       d.normalize();
-      cv::line(ink, pixel(a), pixel(a + gap_close * d), cv::Scalar(255), 2, cv::LINE_8);
+      cv::line(ink, pixel_of(a), pixel_of(a + reach * d), cv::Scalar(255), 2, cv::LINE_8);
     }
   }
+  bridge_near_ends(ink, ends, owner, cell);
   return ink;
 }
 
@@ -337,11 +371,12 @@ void require_rising_regions(const DrawingCurves& curves, const DrawingInterpreta
       << " curves, " << di.region_count << " regions, " << di.ignored_curves << " of the curves between no two regions";
   if (di.ignored_curves * 2 >= nc)
     msg << " (their ends are free: hatching, stippling or sketch strokes — or the two edges of an outline thicker "
-           "than the line scale of "
-        << line_scale_px << " px, traced as separate lines)";
-  msg << ". What to change: a Line scale of about half the width of the drawing's lines in pixels (thin lines in a "
-         "small image: 1; an 8-px pen: 4); or close the gaps in broken outlines; or give the steps in an "
-         "interpretation file.";
+           "than the line scale"
+        << (line_scale_px > 0 ? " of " + std::to_string(int(std::lround(line_scale_px))) + " px" : std::string())
+        << ", traced as separate lines)";
+  msg << ". What to change: " << (line_scale_px > 0 ? "the automatic Line scale (0), or " : "")
+      << "a Line scale of about half the width of the drawing's lines in pixels (thin lines in a small image: 1; an "
+         "8-px pen: 4); or close the gaps in broken outlines; or give the steps in an interpretation file.";
   throw InputError(msg.str());
 }
 

@@ -15,7 +15,7 @@
 namespace reliefkit {
 
 void LineDetectionParams::validate() const {
-  require_range(sigma, "Line scale sigma (px)", 0.5, 50);
+  if (sigma != 0) require_range(sigma, "Line scale sigma (px, 0: automatic)", 0.5, 50);
   require_range(min_strength, "Line strength", 0, 10);
   require_range(max_intensity, "Darkest paper", 0, 1);
   require_range(min_length, "Minimum stroke length (px)", 0, 1e6);
@@ -111,6 +111,39 @@ cv::Mat drawing_grey(const cv::Mat& image) {
   return grey;
 }
 
+cv::Mat drawing_ink(const cv::Mat& grey) {
+  cv::Mat grey8, ink;
+  grey.convertTo(grey8, CV_8U, 255);
+  const double t = cv::threshold(grey8, ink, 0, 255, cv::THRESH_BINARY_INV | cv::THRESH_OTSU);
+  if (t > 0.75 * 255) cv::threshold(grey8, ink, 0.75 * 255, 255, cv::THRESH_BINARY_INV);
+  return ink;
+}
+
+std::vector<float> stroke_widths(const cv::Mat& ink) {
+  cv::Mat dist, peak;
+  cv::distanceTransform(ink, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  cv::dilate(dist, peak, cv::Mat());
+  std::vector<float> widths;
+  for (int y = 0; y < ink.rows; ++y)
+    for (int x = 0; x < ink.cols; ++x)
+      if (ink.at<uchar>(y, x) && dist.at<float>(y, x) >= peak.at<float>(y, x)) widths.push_back(2 * dist.at<float>(y, x) - 0.5f);
+  return widths;
+}
+
+double stroke_width_percentile(std::vector<float> widths, double share) {
+  if (widths.empty()) return 0;
+  auto q = widths.begin() + long(std::clamp(share, 0.0, 1.0) * double(widths.size() - 1));
+  std::nth_element(widths.begin(), q, widths.end());
+  return *q;
+}
+
+std::vector<double> auto_line_scales(const cv::Mat& grey) {
+  const double widest = stroke_width_percentile(stroke_widths(drawing_ink(grey)), 0.95);
+  std::vector<double> scales{1};
+  while (scales.back() * 2 <= kMaxAutoLineScale && 0.5 * widest > scales.back() * std::sqrt(2.0)) scales.push_back(scales.back() * 2);
+  return scales;
+}
+
 namespace {
 
 // Largest second derivative along a line point's direction, relative to the one across it.
@@ -120,6 +153,7 @@ struct LinePoint {
   float x, y;     // sub-pixel position
   float dx, dy;   // unit direction along the line
   float strength;
+  float sigma;    // the scale it was found at
 };
 
 // The direction a polyline leaves by at its end `e` (0: front, 1: back), from the last few px.
@@ -134,6 +168,7 @@ Vec2 end_direction(const std::vector<Vec2>& c, int e) {
 struct PieceEnd {
   int piece, e;
   Vec2 at, dir;
+  double reach;  // px: the gap its line detection leaves at a corner or junction, 2.5 sigma + 1.5
 };
 // A candidate join of two ends, and its cost (gap plus a penalty for the turn).
 struct EndPair {
@@ -141,10 +176,9 @@ struct EndPair {
   int a, b;
 };
 
-// Pairs of ends within `join` px of each other (through a grid of cell `join`) that face each other
-// and turn by less than ~115 degrees.
-std::vector<EndPair> end_pairs(const std::vector<PieceEnd>& ends, const std::vector<std::vector<Vec2>>& pieces, double join) {
-  const double cell = join;
+// Pairs of ends within reach of each other (the smaller of their reaches; through a grid of cell
+// `cell`, the largest reach) that face each other and turn by less than ~115 degrees.
+std::vector<EndPair> end_pairs(const std::vector<PieceEnd>& ends, const std::vector<std::vector<Vec2>>& pieces, double cell) {
   std::unordered_map<long long, std::vector<int>> grid;
   auto cell_of = [&](double v) { return (long long)std::floor(v / cell); };
   for (size_t k = 0; k < ends.size(); ++k) grid[cell_of(ends[k].at.x()) * 1000003LL + cell_of(ends[k].at.y())].push_back(int(k));
@@ -161,7 +195,7 @@ std::vector<EndPair> end_pairs(const std::vector<PieceEnd>& ends, const std::vec
           if (A.piece == B.piece && pieces[size_t(A.piece)].size() < 8) continue;  // a speck does not close on itself
           const Vec2 v = B.at - A.at;
           const double gap = v.norm();
-          if (gap > join) continue;
+          if (gap > std::min(A.reach, B.reach)) continue;
           if (gap > 0.5) {
             const Vec2 u = v / gap;
             if (A.dir.dot(u) < 0.3 || B.dir.dot(-u) < 0.3) continue;  // each end faces the other
@@ -173,11 +207,18 @@ std::vector<EndPair> end_pairs(const std::vector<PieceEnd>& ends, const std::vec
       }
   }
   // Where three or more ends meet (a junction: a T or a Y), the curves end there: the thesis'
-  // curves meet at junctions but do not run through them.
-  std::vector<int> partners(ends.size(), 0);
-  for (const EndPair& c : cand) ++partners[size_t(c.a)], ++partners[size_t(c.b)];
+  // curves meet at junctions but do not run through them. An end with several candidates keeps
+  // the one at most half as costly as its next (a line broken into short pieces, each piece's end
+  // facing the next one's across a pixel or two), else it is at a junction.
+  std::vector<double> best(ends.size(), 1e300), second(ends.size(), 1e300);
+  for (const EndPair& c : cand)
+    for (int e : {c.a, c.b}) {
+      if (c.cost < best[size_t(e)]) second[size_t(e)] = best[size_t(e)], best[size_t(e)] = c.cost;
+      else if (c.cost < second[size_t(e)]) second[size_t(e)] = c.cost;
+    }
+  auto clear_choice = [&](int e, double cost) { return cost <= best[size_t(e)] && second[size_t(e)] >= 2 * cost; };
   cand.erase(std::remove_if(cand.begin(), cand.end(),
-                            [&](const EndPair& c) { return partners[size_t(c.a)] > 1 || partners[size_t(c.b)] > 1; }),
+                            [&](const EndPair& c) { return !clear_choice(c.a, c.cost) || !clear_choice(c.b, c.cost); }),
              cand.end());
   std::sort(cand.begin(), cand.end(), [](const EndPair& x, const EndPair& y) { return x.cost < y.cost; });
   return cand;
@@ -188,11 +229,15 @@ std::vector<EndPair> end_pairs(const std::vector<PieceEnd>& ends, const std::vec
 // Ends are joined greedily, the cheapest pair first, when the gap is within `join` px and each end
 // points towards the other; a piece whose two ends meet is closed. Pieces are concatenated in
 // place; `pieces` keeps only the joined results.
-void join_pieces(std::vector<std::vector<Vec2>>& pieces, const LineDetectionParams& p) {
+void join_pieces(std::vector<std::vector<Vec2>>& pieces, std::vector<float>& sigma) {
   std::vector<PieceEnd> ends;
+  double cell = 0;
   for (size_t i = 0; i < pieces.size(); ++i)
-    for (int e = 0; e < 2; ++e) ends.push_back({int(i), e, e ? pieces[i].back() : pieces[i].front(), end_direction(pieces[i], e)});
-  const std::vector<EndPair> cand = end_pairs(ends, pieces, 2.5 * p.sigma + 1.5);
+    for (int e = 0; e < 2; ++e) {
+      ends.push_back({int(i), e, e ? pieces[i].back() : pieces[i].front(), end_direction(pieces[i], e), 2.5 * sigma[i] + 1.5});
+      cell = std::max(cell, ends.back().reach);
+    }
+  const std::vector<EndPair> cand = end_pairs(ends, pieces, cell);
   // Union of pieces: each piece's current owner. Joined ends are interior and never reused, so an
   // unused end of piece i is still an end of the polyline held by find(i), at the same point.
   std::vector<char> used(ends.size(), 0), closed(pieces.size(), 0);
@@ -223,11 +268,17 @@ void join_pieces(std::vector<std::vector<Vec2>>& pieces, const LineDetectionPara
     if (!b_front) std::reverse(pb.begin(), pb.end());  // B's end first
     pa.insert(pa.end(), pb.begin(), pb.end());
     pb.clear();
+    sigma[size_t(ra)] = std::max(sigma[size_t(ra)], sigma[size_t(rb)]);
     owner[size_t(rb)] = ra;
     used[size_t(c.a)] = used[size_t(c.b)] = 1;
   }
-  pieces.erase(std::remove_if(pieces.begin(), pieces.end(), [](const std::vector<Vec2>& c) { return c.size() < 2; }),
-               pieces.end());
+  size_t kept = 0;
+  for (size_t i = 0; i < pieces.size(); ++i)
+    if (pieces[i].size() >= 2) {
+      if (kept != i) pieces[kept] = std::move(pieces[i]), sigma[kept] = sigma[i];
+      ++kept;
+    }
+  pieces.resize(kept), sigma.resize(kept);
 }
 
 // The smoothed image's derivatives (Sobel 3x3, normalised: central differences).
@@ -267,7 +318,7 @@ bool line_point_at(const Derivatives& d, int x, int y, const LineDetectionParams
   nx /= nn, ny /= nn;
   const double t = -(d.rx.at<float>(y, x) * nx + d.ry.at<float>(y, x) * ny) / lambda;  // to the profile's minimum along n
   if (std::abs(t * nx) > 0.5 || std::abs(t * ny) > 0.5) return false;
-  out = {float(x + t * nx), float(y + t * ny), float(-ny), float(nx), float(lambda)};
+  out = {float(x + t * nx), float(y + t * ny), float(-ny), float(nx), float(lambda), float(p.sigma)};
   return true;
 }
 
@@ -278,28 +329,56 @@ struct LinePoints {
   int W = 0, H = 0;
 };
 
-LinePoints detect_line_points(const cv::Mat& grey, const LineDetectionParams& p) {
+// The line points of one scale, row by row with their pixel's x, at the pixels whose scale it is
+// (`scale_of`: the scale's index per pixel; empty: everywhere).
+using RowPoints = std::vector<std::vector<std::pair<int, LinePoint>>>;
+void add_line_points(const cv::Mat& grey, const LineDetectionParams& p, const cv::Mat& scale_of, int index, RowPoints& rows) {
   const Derivatives d = derivatives(grey, p.sigma);
-  LinePoints lp;
-  lp.W = d.g.cols, lp.H = d.g.rows;
-  lp.at.assign(size_t(lp.W) * lp.H, -1);
-  // Row by row in parallel, then numbered in row order.
-  std::vector<std::vector<LinePoint>> rows(static_cast<size_t>(lp.H));
-  std::vector<std::vector<int>> row_x(static_cast<size_t>(lp.H));
 #pragma omp parallel for schedule(dynamic, 16)
-  for (int y = 0; y < lp.H; ++y) {
+  for (int y = 0; y < d.g.rows; ++y) {
     LinePoint q;
-    for (int x = 0; x < lp.W; ++x)
-      if (line_point_at(d, x, y, p, q)) {
-        rows[size_t(y)].push_back(q);
-        row_x[size_t(y)].push_back(x);
-      }
+    for (int x = 0; x < d.g.cols; ++x)
+      if ((scale_of.empty() || scale_of.at<uchar>(y, x) == index) && line_point_at(d, x, y, p, q)) rows[size_t(y)].emplace_back(x, q);
   }
-  for (int y = 0; y < lp.H; ++y)
-    for (size_t k = 0; k < rows[size_t(y)].size(); ++k) {
-      lp.at[size_t(y) * lp.W + row_x[size_t(y)][k]] = int(lp.pts.size());
-      lp.pts.push_back(rows[size_t(y)][k]);
+}
+
+// Each pixel's scale: the one nearest (in ratio) half the width of the strokes within 2 px of it
+// (the distance transform's largest value there), so that a stroke keeps one scale along itself.
+cv::Mat scale_index_map(const cv::Mat& grey, const std::vector<double>& scales) {
+  cv::Mat dist, width;
+  cv::distanceTransform(drawing_ink(grey), dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  cv::dilate(dist, width, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(5, 5)));
+  cv::Mat index(grey.size(), CV_8U);
+#pragma omp parallel for schedule(static)
+  for (int y = 0; y < grey.rows; ++y)
+    for (int x = 0; x < grey.cols; ++x) {
+      const double half_width = std::max(0.5, width.at<float>(y, x) - 0.25);  // (2 d - 0.5) / 2
+      const int k = int(std::lround(std::log2(half_width / scales.front())));
+      index.at<uchar>(y, x) = uchar(std::clamp(k, 0, int(scales.size()) - 1));
     }
+  return index;
+}
+
+LinePoints detect_line_points(const cv::Mat& grey, const LineDetectionParams& p) {
+  const std::vector<double> scales = p.sigma > 0 ? std::vector<double>{p.sigma} : auto_line_scales(grey);
+  const cv::Mat scale_of = scales.size() > 1 ? scale_index_map(grey, scales) : cv::Mat();
+  RowPoints rows(static_cast<size_t>(grey.rows));
+  for (size_t k = 0; k < scales.size(); ++k) {
+    LineDetectionParams at = p;
+    at.sigma = scales[k];
+    at.min_strength = p.min_strength * (kReferenceScale / scales[k]) * (kReferenceScale / scales[k]);  // scale-normalised
+    add_line_points(grey, at, scale_of, int(k), rows);
+  }
+  LinePoints lp;
+  lp.W = grey.cols, lp.H = grey.rows;
+  lp.at.assign(size_t(lp.W) * lp.H, -1);
+  for (int y = 0; y < lp.H; ++y) {
+    std::sort(rows[size_t(y)].begin(), rows[size_t(y)].end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [x, q] : rows[size_t(y)]) {
+      lp.at[size_t(y) * lp.W + x] = int(lp.pts.size());
+      lp.pts.push_back(q);
+    }
+  }
   return lp;
 }
 
@@ -310,8 +389,9 @@ class Linker {
   Linker(const LinePoints& lp, const LineDetectionParams& p)
       : lp_(lp), p_(p), chain_of_(lp.pts.size(), -1), cos_turn_(std::cos(p.max_link_turn)) {}
 
-  // The pieces linked from every point, strongest first; junctions met are appended to `junctions`.
-  std::vector<std::vector<Vec2>> pieces(std::vector<Vec2>& junctions) {
+  // The pieces linked from every point, strongest first, and each one's scale (its first point's);
+  // junctions met are appended to `junctions`.
+  std::vector<std::vector<Vec2>> pieces(std::vector<Vec2>& junctions, std::vector<float>& sigma) {
     const auto& pts = lp_.pts;
     std::vector<int> order(pts.size());
     std::iota(order.begin(), order.end(), 0);
@@ -328,7 +408,7 @@ class Linker {
       for (auto it = behind.rbegin(); it != behind.rend(); ++it) poly.push_back(Vec2(pts[*it].x, pts[*it].y));
       poly.push_back(Vec2(pts[s].x, pts[s].y));
       for (int i : ahead) poly.push_back(Vec2(pts[i].x, pts[i].y));
-      if (poly.size() >= 2) out.push_back(std::move(poly));
+      if (poly.size() >= 2) out.push_back(std::move(poly)), sigma.push_back(pts[size_t(s)].sigma);
     }
     return out;
   }
@@ -406,16 +486,18 @@ DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionPa
   out.width = grey.cols, out.height = grey.rows;
   const LinePoints lp = detect_line_points(grey, p);
   out.line_points = static_cast<long long>(lp.pts.size());
-  std::vector<std::vector<Vec2>> pieces = Linker(lp, p).pieces(out.junctions);
-  join_pieces(pieces, p);
-  for (auto& poly : pieces) {
+  std::vector<float> sigma;
+  std::vector<std::vector<Vec2>> pieces = Linker(lp, p).pieces(out.junctions, sigma);
+  join_pieces(pieces, sigma);
+  for (size_t k = 0; k < pieces.size(); ++k) {
     double len = 0;
-    for (size_t i = 1; i < poly.size(); ++i) len += (poly[i] - poly[i - 1]).norm();
+    for (size_t i = 1; i < pieces[k].size(); ++i) len += (pieces[k][i] - pieces[k][i - 1]).norm();
     if (len < p.min_length) {
       ++out.dropped_short;
       continue;
     }
-    out.curves.push_back(std::move(poly));
+    out.curves.push_back(std::move(pieces[k]));
+    out.line_width.push_back(2.0 * sigma[k]);
   }
   return out;
 }

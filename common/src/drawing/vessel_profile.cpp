@@ -22,12 +22,9 @@ namespace {
 
 // ---- the ink ---------------------------------------------------------------------------------
 
-// Dark on light: Otsu's threshold of the grey image, never lighter than 0.75 of white.
+// The drawing's ink (drawing_ink), refused when blank or mostly dark.
 cv::Mat ink_of(const cv::Mat& image) {
-  cv::Mat grey8, ink;
-  drawing_grey(image).convertTo(grey8, CV_8U, 255);
-  const double t = cv::threshold(grey8, ink, 0, 255, cv::THRESH_BINARY_INV | cv::THRESH_OTSU);
-  if (t > 0.75 * 255) cv::threshold(grey8, ink, 0.75 * 255, 255, cv::THRESH_BINARY_INV);
+  const cv::Mat ink = drawing_ink(drawing_grey(image));
   const double share = cv::countNonZero(ink) / double(ink.total());
   if (share == 0) throw InputError("The drawing holds no ink: the image is blank (or its lines are as light as the paper).");
   if (share > 0.5)
@@ -36,20 +33,8 @@ cv::Mat ink_of(const cv::Mat& image) {
   return ink;
 }
 
-// The pen: twice the distance to the paper along the strokes' centres (the 3 x 3 maxima of the
-// distance transform), its 30th percentile so that a filled section does not count as a stroke.
-double pen_width_of(const cv::Mat& ink) {
-  cv::Mat dist, peak;
-  cv::distanceTransform(ink, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
-  cv::dilate(dist, peak, cv::Mat());
-  std::vector<float> centre;
-  for (int y = 0; y < ink.rows; ++y)
-    for (int x = 0; x < ink.cols; ++x)
-      if (ink.at<uchar>(y, x) && dist.at<float>(y, x) >= peak.at<float>(y, x)) centre.push_back(dist.at<float>(y, x));
-  auto q = centre.begin() + long(0.3 * double(centre.size()));
-  std::nth_element(centre.begin(), q, centre.end());
-  return std::max(1.0, 2.0 * *q - 0.5);
-}
+// The pen: the 30th percentile of the stroke widths, so that a filled section does not count as a stroke.
+double pen_width_of(const cv::Mat& ink) { return std::max(1.0, stroke_width_percentile(stroke_widths(ink), 0.3)); }
 
 // Ink blobs smaller than `max_side` both ways (stippling, dust, JPEG specks) taken out.
 void drop_specks(cv::Mat& ink, int max_side) {

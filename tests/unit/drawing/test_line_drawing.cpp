@@ -95,8 +95,12 @@ TEST(LineDrawing, BadImagesAreRefused) {
   const DrawingCurves one = extract_drawing_curves(cv::Mat(1, 1, CV_8UC1, cv::Scalar(0)));
   EXPECT_TRUE(one.curves.empty());
   LineDetectionParams p;
+  for (double bad : {0.2, -1.0, std::nan("")}) {  // 0 is automatic
+    p.sigma = bad;
+    EXPECT_THROW(extract_drawing_curves(cv::Mat(10, 10, CV_8UC1, cv::Scalar(255)), p), InputError) << bad;
+  }
   p.sigma = 0;
-  EXPECT_THROW(extract_drawing_curves(cv::Mat(10, 10, CV_8UC1, cv::Scalar(255)), p), InputError);
+  EXPECT_TRUE(extract_drawing_curves(cv::Mat(10, 10, CV_8UC1, cv::Scalar(255)), p).curves.empty());
 }
 
 #include "drawings.h"

@@ -23,7 +23,7 @@
 namespace reliefkit {
 
 struct LineDetectionParams {
-  double sigma = 2.0;          // Gaussian scale, px
+  double sigma = 2.0;          // Gaussian scale, px; 0: automatic, each line at the scale of its width (auto_line_scales)
   double min_strength = 0.01;  // least second derivative across a line, intensity (0-1) / px^2
   double max_intensity = 0.75; // line points are darker than this in the smoothed image (0 black, 1 white)
   double min_length = 12;      // px: shorter strokes are dropped
@@ -35,6 +35,7 @@ struct LineDetectionParams {
 
 struct DrawingCurves {
   std::vector<std::vector<Vec2>> curves;  // polylines, pixel coordinates
+  std::vector<double> line_width;         // per curve: its width class, px (twice the scale it was found at)
   std::vector<Vec2> junctions;            // where a curve ends on another one
   int width = 0, height = 0;              // of the image
   long long line_points = 0;              // before linking
@@ -47,6 +48,28 @@ struct DrawingCurves {
 cv::Mat drawing_grey(const cv::Mat& image);
 
 DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionParams& params = {});
+
+/// The ink of a grey drawing (drawing_grey): darker than Otsu's threshold, never lighter than 0.75
+/// of white; 255 on ink (CV_8U).
+cv::Mat drawing_ink(const cv::Mat& grey);
+
+/// The widths of the ink's strokes (px), unsorted: at each stroke-centre pixel (a 3 x 3 maximum of
+/// the distance transform) twice its distance to the paper, less half a pixel.
+std::vector<float> stroke_widths(const cv::Mat& ink);
+/// The `share` quantile (0-1) of stroke widths; 0 for none.
+double stroke_width_percentile(std::vector<float> widths, double share);
+
+/// The scale at which the default threshold min_strength holds; at another scale sigma the
+/// threshold is scale-normalised (min_strength x (kReferenceScale / sigma)^2).
+constexpr double kReferenceScale = 2.0;
+constexpr double kMaxAutoLineScale = 8.0;
+/// The scales of automatic detection (sigma = 0): 1, 2, 4, 8 px, up to about half the width of the
+/// drawing's widest strokes (their 95th percentile). Each pixel is searched at one of them: the one
+/// nearest half the width of the strokes within 2 px (Steger's scale for a bar of width w is at least
+/// w / (2 sqrt 3); w / 2 is where the scale-normalised response sigma^2 x the second derivative
+/// peaks), so a thick outline and thin hatching are each found at their own scale and a stroke
+/// keeps one scale along itself. The strength threshold is scale-normalised.
+std::vector<double> auto_line_scales(const cv::Mat& grey);
 
 /// The margins of the curves (the thesis' fig. 7.2): each curve offset by `width` px to its left and
 /// to its right (per point, along the normal of the neighbouring segments), two polylines per curve.
