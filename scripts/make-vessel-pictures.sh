@@ -2,7 +2,9 @@
 # Re-makes the vessel pictures of docs/drawing_recon.md in the real MeshLab GUI under a virtual
 # display: "Vessel from Profile Drawing" at its defaults on the shared bowl half-section and on the
 # example jar (hatched section, base broken off): drawing | the vessel from below | from the side.
-# Output: docs/img/drawing_vessels.png (working files in build/vessel-pictures).
+# Then the filter in the GUI: found by the Filters search, the bowl chosen with "...", Apply.
+# Output: docs/img/drawing_vessels.png, docs/img/gui_vessel_dialog.png, docs/img/gui_vessel_applied.png
+# (working files in build/vessel-pictures).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="$here/build/vessel-pictures"; rm -rf "$out"; mkdir -p "$out"
@@ -24,4 +26,32 @@ for d in "$here/tests/data/drawings/pottery_bowl_half_section.jpg:1" "$here/exam
   rows+=("$out/${name}_row.png")
 done
 convert "${rows[@]}" -append -resize 1500x "$here/docs/img/drawing_vessels.png"
-echo "picture written to $here/docs/img/drawing_vessels.png"
+cat >"$out/gui.txt" <<EOF
+click 1258 46
+sleep 1
+type Vessel from
+sleep 2
+click 860 99
+sleep 3
+click 466 343
+sleep 3
+type $here/tests/data/drawings/pottery_bowl_half_section.jpg
+key Return
+sleep 2
+shot $out/gui_dialog.png
+click 390 569
+sleep 6
+click 134 569
+sleep 2
+click 231 10
+sleep 1
+click 290 113
+sleep 2
+drag 430 560 430 440
+sleep 4
+shot $out/gui_applied.png
+EOF
+"$here/scripts/gui-shots.sh" "$out/gui.txt" -- >/dev/null
+convert "$out/gui_dialog.png" -crop 530x600+0+0 +repage "$here/docs/img/gui_vessel_dialog.png"
+convert "$out/gui_applied.png" -resize 75% "$here/docs/img/gui_vessel_applied.png"
+echo "pictures written to $here/docs/img: drawing_vessels.png, gui_vessel_dialog.png, gui_vessel_applied.png"
