@@ -61,12 +61,17 @@ VesselDrawing vessel_drawing(const VesselDrawingOptions& o) {
   d.height = bottom - top;
   d.section = true_section(top, bottom, o.base);
   d.image = cv::Mat(560, 640, CV_8UC1, cv::Scalar(255));
-  draw_section(d.image, to_image(d.section, d.axis_x, o.section_left), o);
-  std::vector<Vec2> exterior;
+  std::vector<Vec2>& exterior = d.exterior;
   for (double y = top; y <= bottom; y += 1) exterior.emplace_back(outer_radius(y), -y);
   if (o.base) exterior.emplace_back(0, -kBase);
-  cv::polylines(d.image, std::vector<std::vector<cv::Point>>{to_image(exterior, d.axis_x, !o.section_left)}, false,
-                cv::Scalar(0), o.line_px, cv::LINE_AA);
+  for (const bool left : {true, false}) {
+    if (left == o.section_left && o.style != SectionStyle::ProfileOnly) {
+      draw_section(d.image, to_image(d.section, d.axis_x, left), o);
+      continue;
+    }
+    cv::polylines(d.image, std::vector<std::vector<cv::Point>>{to_image(exterior, d.axis_x, left)}, false, cv::Scalar(0),
+                  o.line_px, cv::LINE_AA);
+  }
   const int mouth = int(std::lround(outer_radius(top)));
   if (o.rim) cv::line(d.image, cv::Point(int(d.axis_x) - mouth, int(top)), cv::Point(int(d.axis_x) + mouth, int(top)), cv::Scalar(0),
            o.line_px, cv::LINE_AA);

@@ -9,7 +9,7 @@
 
 namespace rktest {
 
-enum class SectionStyle { Filled, Outlined, Hatched };
+enum class SectionStyle { Filled, Outlined, Hatched, ProfileOnly };  // ProfileOnly: the outer line on both sides, no section
 
 struct VesselDrawingOptions {
   SectionStyle style = SectionStyle::Filled;
@@ -28,6 +28,7 @@ struct VesselDrawing {
   double axis_x = 320;
   double height = 420;                   // px, of the vessel as drawn (rim or break to base or break)
   std::vector<reliefkit::Vec2> section;  // the true section in (radius, height = -y), px, closed
+  std::vector<reliefkit::Vec2> exterior; // the true outer wall (and base, to the axis), rim to base, open
 };
 VesselDrawing vessel_drawing(const VesselDrawingOptions& options = {});
 

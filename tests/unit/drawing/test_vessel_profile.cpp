@@ -136,6 +136,35 @@ TEST(VesselProfile, GivenAxisAndSideAreKeptAndMillimetresFollowThePixelSize) {
   EXPECT_FALSE(right.closed);
 }
 
+// A profile drawn as one line (no section): the outer wall alone, within 1 % of the height, the
+// base closed on the axis, an open surface.
+TEST(VesselProfile, AProfileLineGivesTheOuterWall) {
+  VesselDrawingOptions o;
+  o.style = SectionStyle::ProfileOnly;
+  const rktest::VesselDrawing d = rktest::vessel_drawing(o);
+  const VesselProfile p = read(d);
+  SCOPED_TRACE(vessel_summary(p, 1, "px"));
+  EXPECT_EQ(p.kind, VesselSectionKind::ProfileLine);
+  EXPECT_FALSE(p.closed);
+  EXPECT_EQ(p.axis_gap, 0);
+  auto to_open = [](const Vec2& q, const std::vector<Vec2>& line) {
+    double best = 1e300;
+    for (size_t i = 0; i + 1 < line.size(); ++i) {
+      const Vec2 a = line[i], b = line[i + 1], u = b - a;
+      const double t = u.squaredNorm() > 0 ? std::clamp((q - a).dot(u) / u.squaredNorm(), 0.0, 1.0) : 0;
+      best = std::min(best, (a + t * u - q).norm());
+    }
+    return best;
+  };
+  const TriMesh m = revolve_vessel_profile(p, {});
+  double off = 0, missed = 0;
+  for (const Vec3& v : m.vertices) off = std::max(off, to_open(Vec2(std::hypot(v.x() - p.axis_x, v.z()), v.y()), d.exterior));
+  const std::vector<Vec2> profile = vessel_profile_section(p, 1.0);
+  for (const Vec2& q : d.exterior) missed = std::max(missed, to_open(q, profile));
+  std::printf("[vessel, profile line] farthest vertex %.2f px, farthest missed %.2f px\n", off, missed);
+  EXPECT_LE(std::max(off, missed), 0.01 * d.height);
+}
+
 TEST(VesselProfile, ThePotteryBowlHalfSection) {
   const cv::Mat img = read_drawing_image(RELIEFKIT_TEST_DRAWINGS "/pottery_bowl_half_section.jpg");
   const VesselProfile p = read_vessel_profile(img, {});
