@@ -129,8 +129,8 @@ struct SectionScene {
 };
 
 // A wall is thin: its thickness at most this share of its boundary along the outer paper (sections
-// are thicker at the rim or foot: the shared bowl's section measured 0.072, synthetic jars' 0.017-0.025;
-// not walls: the bowl's exterior sherd 0.14, a jar's exterior half drawn as a closed region 0.22).
+// are thicker at the rim or foot, as the shared bowl's lip; the bowl's exterior sherd and a jar's
+// exterior half drawn as a closed region are thicker than this: VesselProfile.* read them so).
 constexpr double kMaxThicknessShare = 0.1;
 
 // Scores a region: on one side of the axis, its boundary along the outer paper (contact) over its

@@ -226,6 +226,17 @@ TEST(DrawingInterpretation, AShadedToolWithAHeavyOutlineRisesWhole) {
     EXPECT_GE(double(raised) / tool, 0.95) << outline;
     EXPECT_GE(double(on_part) / scar, 0.95) << outline;
   }
+  // The former fixed scale: the 16-px outline traced as its two edges, the paper between them a ring.
+  const rktest::ShadedTool heavy = rktest::shaded_tool_drawing(16);
+  const DrawingInterpretation at2 = interpret_drawing(extract_drawing_curves(heavy.image));
+  long tool = 0, raised = 0;
+  for (int y = 0; y < heavy.image.rows; ++y)
+    for (int x = 0; x < heavy.image.cols; ++x) {
+      const int r = at2.regions.at<int>(y, x);
+      if (r >= 0 && heavy.tool.at<uchar>(y, x)) ++tool, raised += at2.region_height[size_t(r)] >= 1;
+    }
+  std::printf("[shaded tool, 16-px outline, line scale 2 px] tool raised: %.3f\n", double(raised) / tool);
+  EXPECT_LT(double(raised) / tool, 0.5);
 }
 
 // Thin scar lines starting on an 8-px outline: at the automatic scale the outline is found at 4 px

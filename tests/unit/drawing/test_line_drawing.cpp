@@ -111,8 +111,13 @@ TEST(LineDrawing, BadImagesAreRefused) {
 TEST(LineDrawing, NestedDrawingWithShadingNoiseAndJpeg) {
   cv::Mat img = rktest::nested_drawing();
   rktest::add_shading(img, cv::Rect(250, 60, 110, 100));  // between the disc and the ring
+  // At the thesis' 2 px and at the automatic scale (the filter's default), which finds the shading's
+  // finer strokes too: more pieces under heavy noise (measured 17 against 10), slightly less precise.
+  for (const double sigma : {2.0, 0.0})
   for (const auto& [name, im] : {std::pair{"shaded", img}, std::pair{"shaded + noise 8 % + JPEG q40", rktest::paper_and_jpeg(img, 0.08, 40)}}) {
-    const DrawingCurves d = extract_drawing_curves(im);
+    LineDetectionParams p;
+    p.sigma = sigma;
+    const DrawingCurves d = extract_drawing_curves(im, p);
     long good = 0, n = 0;
     for (const auto& c : d.curves)
       for (const auto& p : c) good += rktest::nested_truth_distance(p) <= 2.0, ++n;
@@ -131,11 +136,11 @@ TEST(LineDrawing, NestedDrawingWithShadingNoiseAndJpeg) {
       hit += covered;
     }
     const double recall = double(hit) / truth.size(), precision = n ? double(good) / n : 0;
-    std::printf("[line drawing, nested %s] %zu curves (%lld short strokes dropped), recall %.3f precision %.3f within 2 px\n", name,
-                d.curves.size(), d.dropped_short, recall, precision);
-    EXPECT_GE(recall, 0.95) << name;
-    EXPECT_GE(precision, 0.95) << name;
-    EXPECT_LE(d.curves.size(), 12u) << name;  // six strokes; noise may break one in two here and there
+    std::printf("[line drawing, nested %s, line scale %g] %zu curves (%lld short strokes dropped), recall %.3f precision %.3f "
+                "within 2 px\n", name, sigma, d.curves.size(), d.dropped_short, recall, precision);
+    EXPECT_GE(recall, 0.95) << name << sigma;
+    EXPECT_GE(precision, 0.95) << name << sigma;
+    EXPECT_LE(d.curves.size(), sigma > 0 ? 12u : 20u) << name;  // six strokes; noise may break one in two here and there
   }
 }
 
