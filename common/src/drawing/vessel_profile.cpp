@@ -133,6 +133,11 @@ struct SectionScene {
 // exterior half drawn as a closed region are thicker than this: VesselProfile.* read them so).
 constexpr double kMaxThicknessShare = 0.1;
 
+// What a vessel drawing must show (require_vessel_drawing): a profile over at least this share of
+// the drawing's height, and (axis found) at least this share of mirrored rows.
+constexpr double kMinProfileHeightShare = 0.25;
+constexpr double kMinMirrorAgreement = 0.6;
+
 // Scores a region: on one side of the axis, its boundary along the outer paper (contact) over its
 // thickness (twice the largest inscribed radius). 0 when it does not qualify.
 void score_candidate(const SectionScene& s, Candidate& c) {
@@ -268,6 +273,47 @@ bool profile_line(const cv::Mat& ink, VesselSide side, VesselProfile& p) {
   return true;
 }
 
+// ---- is it a vessel? -------------------------------------------------------------------------
+
+// The share of the rows inked on both sides of the axis whose outermost ink lies at the same
+// distance from it on the left and on the right (within 5 % of the drawn half-width): a
+// half-section's exterior mirrors its section's outer wall.
+double mirror_agreement(const cv::Mat& ink, double axis, const InkBox& box) {
+  const double tolerance = 0.05 * std::max(axis - box.x0, box.x1 - axis);
+  const int a = int(std::lround(axis));
+  long rows = 0, agree = 0;
+  for (int y = box.y0; y <= box.y1; ++y) {
+    const uchar* row = ink.ptr<uchar>(y);
+    int left = -1, right = -1;
+    for (int x = box.x0; x < a - 2 && left < 0; ++x) if (row[x]) left = x;
+    for (int x = box.x1; x > a + 2 && right < 0; --x) if (row[x]) right = x;
+    if (left < 0 || right < 0) continue;
+    ++rows, agree += std::abs((axis - left) - (right - axis)) <= tolerance;
+  }
+  return rows ? double(agree) / double(rows) : 0;
+}
+
+std::string percent(double share) { return std::to_string(int(std::lround(100 * share))) + " %"; }
+
+// A vessel's profile runs over a good part of its drawing, and a drawing in the half-section
+// convention is symmetric about its axis (checked when the axis was found, not given). Throws
+// InputError saying what was found otherwise: the drawing is not a pottery profile.
+void require_vessel_drawing(const VesselProfile& p, const cv::Mat& ink, const InkBox& box, bool axis_given) {
+  const double spans = (p.bottom_y - p.top_y) / std::max(1, box.height());
+  if (spans < kMinProfileHeightShare)
+    throw InputError("The vessel profile found spans " + percent(spans) + " of the drawing's height (" +
+                     std::to_string(int(p.bottom_y - p.top_y)) + " of " + std::to_string(box.height()) +
+                     " px): the drawing does not look like a vessel's half-section. Crop it to one vessel, or give the "
+                     "axis position and the section side.");
+  if (axis_given) return;
+  const double mirrored = mirror_agreement(ink, p.axis_x, box);
+  if (mirrored < kMinMirrorAgreement)
+    throw InputError("The drawing is not symmetric about the axis found (x = " + std::to_string(int(p.axis_x)) +
+                     " px): " + percent(mirrored) + " of its rows have their outer edges at the same distance on both "
+                     "sides, where a half-section's exterior mirrors its section. Not a pottery profile — or only one "
+                     "side is drawn: then give the axis position.");
+}
+
 // ---- what was read ---------------------------------------------------------------------------
 
 void measure_profile(VesselProfile& p) {
@@ -328,6 +374,7 @@ VesselProfile read_vessel_profile(const cv::Mat& image, const VesselParams& para
                        "region along the outline) nor a profile line. Check the axis position and the section side.");
   }
   measure_profile(p);
+  require_vessel_drawing(p, ink, box, !std::isnan(params.axis_x));
   return p;
 }
 

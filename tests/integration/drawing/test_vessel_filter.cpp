@@ -115,6 +115,8 @@ TEST(VesselFilter, BadInputStopsWithAClearMessage) {
       {"axis outside", vessel_filter(dir + "/jar.png", 300, 1, 5000), "outside the drawing"},
       {"zero DPI", vessel_filter(dir + "/jar.png", 0), "DPI"},
       {"too few segments", vessel_filter(dir + "/jar.png", 300, 1, -1, 0, 3), "Segments"},
+      {"a stone tool, not a vessel", vessel_filter(source_dir() + "/tests/data/drawings/lithic_qesem_cave.png"), "does not look like a vessel"},
+      {"NaN DPI", vessel_filter(dir + "/jar.png", std::nan("")), "DPI"},
   };
   for (const Case& c : cases) {
     const std::string out = "out_" + std::to_string(&c - cases.data()) + ".ply";

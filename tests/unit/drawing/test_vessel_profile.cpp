@@ -199,3 +199,19 @@ TEST(VesselProfile, BadDrawingsStopWithAClearMessage) {
   outside.axis_x = 5000;
   EXPECT_NE(message(rktest::vessel_drawing().image, outside).find("outside the drawing"), std::string::npos);
 }
+
+// Drawings that are not pottery profiles are refused, never turned into a vessel: two views of a
+// stone tool (not symmetric about any axis: 0 % of rows mirrored, a half-section 99.7 % and more)
+// and a cuneiform tablet (its best "section" spans 1 % of the drawing's height).
+TEST(VesselProfile, DrawingsThatAreNotVesselsAreRefused) {
+  auto message = [](const char* file) {
+    try {
+      read_vessel_profile(read_drawing_image(std::string(RELIEFKIT_TEST_DRAWINGS "/") + file), {});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("lithic_replica_1.png").find("not symmetric about the axis"), std::string::npos);
+  EXPECT_NE(message("cuneiform_P102630_obverse.png").find("does not look like a vessel"), std::string::npos);
+}
