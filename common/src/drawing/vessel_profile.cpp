@@ -298,15 +298,16 @@ std::string percent(double share) { return std::to_string(int(std::lround(100 * 
 // A vessel's profile runs over a good part of its drawing, and a drawing in the half-section
 // convention is symmetric about its axis (checked when the axis was found, not given). Throws
 // InputError saying what was found otherwise: the drawing is not a pottery profile.
-void require_vessel_drawing(const VesselProfile& p, const cv::Mat& ink, const InkBox& box, bool axis_given) {
+void require_vessel_drawing(VesselProfile& p, const cv::Mat& ink, const InkBox& box, bool axis_given) {
   const double spans = (p.bottom_y - p.top_y) / std::max(1, box.height());
   if (spans < kMinProfileHeightShare)
     throw InputError("The vessel profile found spans " + percent(spans) + " of the drawing's height (" +
                      std::to_string(int(p.bottom_y - p.top_y)) + " of " + std::to_string(box.height()) +
                      " px): the drawing does not look like a vessel's half-section. Crop it to one vessel, or give the "
                      "axis position and the section side.");
+  p.mirrored_rows = mirror_agreement(ink, p.axis_x, box);
+  const double mirrored = p.mirrored_rows;
   if (axis_given) return;
-  const double mirrored = mirror_agreement(ink, p.axis_x, box);
   if (mirrored < kMinMirrorAgreement)
     throw InputError("The drawing is not symmetric about the axis found (x = " + std::to_string(int(p.axis_x)) +
                      " px): " + percent(mirrored) + " of its rows have their outer edges at the same distance on both "
@@ -514,7 +515,7 @@ std::string vessel_summary(const VesselProfile& p, double s, const char* unit) {
     << " px, " << sources[int(p.axis_source)] << "); height " << (p.bottom_y - p.top_y) * s << " " << unit
     << ", rim diameter " << 2 * p.rim_radius * s << " " << unit << ", widest " << 2 * p.max_radius * s << " " << unit;
   if (p.closed) o << ", wall about " << p.wall_thickness * s << " " << unit << " thick";
-  o << "; pen " << p.pen_width << " px; ";
+  o << "; pen " << p.pen_width << " px; " << std::lround(100 * p.mirrored_rows) << " % of rows mirrored about the axis; ";
   if (p.axis_gap == 0)
     o << "the base closes on the axis";
   else

@@ -201,7 +201,7 @@ TEST(VesselProfile, BadDrawingsStopWithAClearMessage) {
 }
 
 // Drawings that are not pottery profiles are refused, never turned into a vessel: two views of a
-// stone tool (not symmetric about any axis: 0 % of rows mirrored, a half-section 99.7 % and more)
+// stone tool (not symmetric about any axis: 0 % of rows mirrored, the bowl 100 %)
 // and a cuneiform tablet (its best "section" spans 1 % of the drawing's height).
 TEST(VesselProfile, DrawingsThatAreNotVesselsAreRefused) {
   auto message = [](const char* file) {

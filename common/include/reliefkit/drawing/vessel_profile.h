@@ -55,6 +55,7 @@ struct VesselProfile {
   double rim_radius = 0;      // px: the widest radius in the top tenth of the height
   double max_radius = 0;      // px
   double axis_gap = 0;        // px: the least distance of the wall from the axis (0: the base closes on it)
+  double mirrored_rows = 0;   // share of the rows inked on both sides whose outer edges mirror about the axis
 };
 
 /// The vessel's profile read from a drawing (grey, colour or RGBA; dark lines on light paper).
@@ -72,7 +73,7 @@ TriMesh revolve_vessel_profile(const VesselProfile& profile, const VesselParams&
 /// about 1/500 of its length (never shorter than a pen width or 1.5 px).
 std::vector<Vec2> vessel_profile_section(const VesselProfile& profile, double pixel_size);
 
-/// One line for a log: axis, side, kind, size in mesh units, rim and base.
+/// One line for a log: axis, side, kind, size in mesh units, mirrored rows, rim and base.
 std::string vessel_summary(const VesselProfile& profile, double pixel_size, const char* unit = "mm");
 
 }  // namespace reliefkit
