@@ -8,6 +8,7 @@
 #include <deque>
 
 #include "drawing_filters.h"
+#include "drawing_image.h"
 #include "mesh_bridge.h"
 #include "params.h"
 #include "reliefkit/drawing/base_library.h"
@@ -42,8 +43,6 @@ const char* kBaseCitation =
     "M. Kolomenkin, G. Leifman, I. Shimshoni, A. Tal, <b>\"Reconstruction of relief objects from line "
     "drawings\"</b>, CVPR 2011; thesis chapter 7, section 7.5.";
 
-const QStringList kImageExts = {"*.png", "*.jpg", "*.jpeg", "*.tif", "*.tiff", "*.bmp"};
-
 // The library the build made, in the private prefix (or an installed tree): <bin>/../share/reliefkit/bases.
 QString shipped_library() {
   const QString dir = QDir::cleanPath(QCoreApplication::applicationDirPath() + "/../share/reliefkit/bases");
@@ -51,19 +50,14 @@ QString shipped_library() {
 }
 
 void base_parameters(MeshModel&, RichParameterList& par) {
-  par.addParam(RichOpenFile("drawing", "", kImageExts, "Drawing image",
-                            "The drawing of the object: dark lines on light paper (PNG, JPEG, TIFF, BMP)."));
+  add_drawing_image_parameter(par, "The drawing of the object: dark lines on light paper (PNG, JPEG, TIFF, BMP).");
   par.addParam(RichString("views", "front", "Views",
                           "Which views the image shows: \"front\" (the largest outline is the front view); \"front; "
                           "top\" (the two largest outlines in reading order: top to bottom, then left to right); "
                           "\"front = x y w h; side = x y w h\" (regions in pixels); \"top = other_image.png\" (a view "
                           "in its own image, beside the drawing). Views: front (x right, y up), side (seen from the "
                           "right), top (seen from above, front at the bottom)."));
-  par.addParam(RichFloat("dpi", 300.f, "Drawing resolution (DPI)",
-                         "Dots per inch of the scan: with the scale it sets the base's size, 25.4 / DPI x scale "
-                         "millimetres per pixel."));
-  par.addParam(RichFloat("scale", 1.f, "Drawing scale (object : drawing)",
-                         "How many times larger the object is than its drawing (2 for a figure drawn at 1:2)."));
+  add_dpi_and_scale_parameters(par);
   const QString shipped = shipped_library();
   par.addParam(RichString("library", "", "Model library folder",
                           "Empty: ReliefKit's own library of base models (" +
@@ -101,7 +95,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 // What "Base from Drawing Silhouette" reads.
 struct BaseSettings {
   QString path, views_text, library_dir, user_dir, wanted;
-  double dpi = 300, scale = 1;
+  double pixel_mm = 25.4 / 300;  // of the images as drawn (DPI and scale)
   DeformParams deform;
   OutlineParams outline;
   int listed = 5;
@@ -111,8 +105,7 @@ struct BaseSettings {
 BaseSettings read_base_settings(FilterCall& call) {
   BaseSettings s;
   s.path = call.params.getOpenFileName("drawing");
-  s.dpi = read_float(call, "dpi", "Drawing resolution (DPI)", 1, 100000);
-  s.scale = read_float(call, "scale", "Drawing scale (object : drawing)", 1e-6, 1e6);
+  s.pixel_mm = read_pixel_mm(call);
   s.deform.alpha = read_float(call, "alpha", "Shape weight (alpha)", 1e-4, 1e4);
   s.deform.passes = read_int(call, "passes", "Passes", 1, 20);
   s.deform.progress = call.progress;
@@ -151,7 +144,7 @@ class DrawingImages {
       if (im.path == p) return im;
     double reduction = 1;
     const cv::Mat img = read_drawing_image(p.toStdString(), &reduction);
-    images_.push_back({p, drawing_grey(img), 25.4 / s_.dpi * s_.scale / reduction});
+    images_.push_back({p, drawing_grey(img), s_.pixel_mm / reduction});
     return images_.back();
   }
 

@@ -1,4 +1,5 @@
 #include "drawing_filters.h"
+#include "drawing_image.h"
 
 #include <QDir>
 #include <QFile>
@@ -50,7 +51,6 @@ const char* kReliefInfo =
     "line; the Laplacian of the relief is interpolated smoothly between the lines, eq. 7.4, then the relief, "
     "eq. 7.6). ";
 
-const QStringList kImageExts = {"*.png", "*.jpg", "*.jpeg", "*.tif", "*.tiff", "*.bmp"};
 const QStringList kBases = {"Plane", "Cylinder (the drawing's width goes round it)",
                              "Current layer (the drawing projected onto it)"};
 enum BaseChoice { kPlane, kCylinder, kCurrent };
@@ -63,9 +63,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 // ---- Shared: the drawing and its curves ----
 
 void drawing_parameters(RichParameterList& par) {
-  par.addParam(RichOpenFile("drawing", "", kImageExts, "Drawing image",
-                            "The scanned line drawing: dark lines on light paper (PNG, JPEG, TIFF, BMP; grey, colour "
-                            "or RGBA with a transparent background)."));
+  add_drawing_image_parameter(par, "The scanned line drawing: dark lines on light paper (PNG, JPEG, TIFF, BMP; grey, "
+                                   "colour or RGBA with a transparent background).");
   par.addParam(RichFloat("sigma", 0.f, "Line scale (px, 0: auto)",
                          "Standard deviation of the Gaussian that smooths the image before lines are found, about the "
                          "lines' half-width. 0 (automatic): each line at the scale of its own width (1, 2, 4 or 8 px), "
@@ -74,11 +73,7 @@ void drawing_parameters(RichParameterList& par) {
                          "A number: that one scale for every line (the thesis: 2 px)."));
   par.addParam(RichFloat("min_length", 12.f, "Shortest stroke (px)",
                          "Strokes shorter than this are taken for shading (stippling, hatching) and dropped."));
-  par.addParam(RichFloat("dpi", 300.f, "Drawing resolution (DPI)",
-                         "Dots per inch of the scan: with the scale it sets the size of a pixel on the object, "
-                         "25.4 / DPI x scale millimetres."));
-  par.addParam(RichFloat("scale", 1.f, "Drawing scale (object : drawing)",
-                         "How many times larger the object is than its drawing (2 for a figure drawn at 1:2)."));
+  add_dpi_and_scale_parameters(par);
 }
 
 struct Drawing {
@@ -91,23 +86,13 @@ struct Drawing {
 
 Drawing read_drawing(FilterCall& call) {
   Drawing d;
-  d.path = call.params.getOpenFileName("drawing");
   d.detection.sigma = read_float(call, "sigma", "Line scale (px, 0: auto)", 0, 50);
   if (d.detection.sigma > 0 && d.detection.sigma < 0.5)
     throw InputError("Line scale (px, 0: auto): 0 for automatic, or at least 0.5 px.");
   d.detection.min_length = read_float(call, "min_length", "Shortest stroke (px)", 0, 1e6);
-  const double dpi = read_float(call, "dpi", "Drawing resolution (DPI)", 1, 100000);
-  const double scale = read_float(call, "scale", "Drawing scale (object : drawing)", 1e-6, 1e6);
-  if (d.path.trimmed().isEmpty()) throw InputError("No drawing image was given: choose the image file in \"Drawing image\".");
-  double reduction = 1;
+  d.pixel_mm = read_pixel_mm(call);
   if (call.progress) call.progress(2, "Reading the drawing");
-  d.image = read_drawing_image(d.path.toStdString(), &reduction);
-  d.pixel_mm = 25.4 / dpi * scale / reduction;
-  if (reduction < 1)
-    call.log(QString("The drawing has more than %1 million pixels: read reduced by %2 (pixel size %3 mm).")
-                 .arg(kMaxDrawingPixels / 1e6, 0, 'f', 0)
-                 .arg(reduction, 0, 'f', 3)
-                 .arg(d.pixel_mm, 0, 'g', 4));
+  d.image = read_drawing_parameter(call, d.pixel_mm, &d.path);
   if (call.progress) call.progress(10, "Finding the lines");
   d.curves = extract_drawing_curves(d.image, d.detection);
   if (d.curves.curves.empty())

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "drawing_filters.h"
+#include "drawing_image.h"
 #include "mesh_bridge.h"
 #include "params.h"
 #include "reliefkit/drawing/drawing_relief.h"
@@ -27,18 +28,12 @@ const char* kVesselInfo =
     "the viewer on +z), vertex quality = the distance from the axis; and <i>&lt;image&gt; – profile</i>, the "
     "section's outline as it was read, to check it against the drawing.";
 
-const QStringList kImageExts = {"*.png", "*.jpg", "*.jpeg", "*.tif", "*.tiff", "*.bmp"};
 const QStringList kSides = {"Found in the drawing", "Left of the axis", "Right of the axis"};
 
 void vessel_parameters(MeshModel&, RichParameterList& par) {
-  par.addParam(RichOpenFile("drawing", "", kImageExts, "Drawing image",
-                            "The profile drawing: a half-section (or a profile line) of a vessel, dark lines on light "
-                            "paper (PNG, JPEG, TIFF, BMP)."));
-  par.addParam(RichFloat("dpi", 300.f, "Drawing resolution (DPI)",
-                         "Dots per inch of the scan: with the scale it sets the vessel's size, 25.4 / DPI x scale "
-                         "millimetres per pixel."));
-  par.addParam(RichFloat("scale", 1.f, "Drawing scale (object : drawing)",
-                         "How many times larger the vessel is than its drawing (3 for a figure drawn at 1:3)."));
+  add_drawing_image_parameter(par, "The profile drawing: a half-section (or a profile line) of a vessel, dark lines "
+                                   "on light paper (PNG, JPEG, TIFF, BMP).");
+  add_dpi_and_scale_parameters(par);
   par.addParam(RichFloat("axis", -1.f, "Axis position (px, -1: found)",
                          "The axis' x in pixels of the image (from its left edge). -1: the drawn vertical axis line "
                          "near the middle, else the middle of the drawn width."));
@@ -49,15 +44,10 @@ void vessel_parameters(MeshModel&, RichParameterList& par) {
                        "profile's (48 to 360)."));
 }
 
-VesselParams read_vessel_params(FilterCall& call, const cv::Mat& image, double pixel_mm) {
+VesselParams read_vessel_params(FilterCall& call, double pixel_mm) {
   VesselParams vp;
   const double axis = read_float(call, "axis", "Axis position (px, -1: found)", -1, 1e7);
-  if (axis >= 0 && axis > image.cols - 1)
-    throw InputError(QString("Axis position %1 px is outside the drawing (0 to %2 px, or -1 to find it).")
-                         .arg(axis)
-                         .arg(image.cols - 1)
-                         .toStdString());
-  if (axis >= 0) vp.axis_x = axis;
+  if (axis >= 0) vp.axis_x = axis;  // the core refuses one outside the image
   vp.side = VesselSide(read_enum(call, "side", "Section side", kSides.size()));
   vp.segments = read_int(call, "segments", "Segments around the axis (0: auto)", 0, 100000);
   vp.pixel_size = pixel_mm;
@@ -74,14 +64,11 @@ Polylines profile_curve(const VesselProfile& p, double pixel_mm) {
 
 void apply_vessel(FilterCall& call) {
   const auto t0 = std::chrono::steady_clock::now();
-  const QString path = call.params.getOpenFileName("drawing");
-  if (path.trimmed().isEmpty()) throw InputError("No drawing image was given: choose the image file in \"Drawing image\".");
-  const double dpi = read_float(call, "dpi", "Drawing resolution (DPI)", 1, 100000);
-  const double scale = read_float(call, "scale", "Drawing scale (object : drawing)", 1e-6, 1e6);
+  double pixel_mm = read_pixel_mm(call);
   if (call.progress) call.progress(5, "Reading the drawing");
-  double reduction = 1;
-  const cv::Mat image = read_drawing_image(path.toStdString(), &reduction);
-  const VesselParams vp = read_vessel_params(call, image, 25.4 / dpi * scale / reduction);
+  QString path;
+  const cv::Mat image = read_drawing_parameter(call, pixel_mm, &path);
+  const VesselParams vp = read_vessel_params(call, pixel_mm);
   if (call.progress) call.progress(20, "Finding the axis and the section");
   const VesselProfile profile = read_vessel_profile(image, vp);
   if (call.progress) call.progress(70, "Turning the profile");

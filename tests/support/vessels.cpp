@@ -79,9 +79,9 @@ VesselDrawing vessel_drawing(const VesselDrawingOptions& o) {
   return d;
 }
 
-double distance_to_polygon(const Vec2& q, const std::vector<Vec2>& poly) {
+double distance_to_polygon(const Vec2& q, const std::vector<Vec2>& poly, bool closed) {
   double best = 1e300;
-  for (size_t i = 0; i < poly.size(); ++i) {
+  for (size_t i = 0; i + (closed ? 0 : 1) < poly.size(); ++i) {
     const Vec2 a = poly[i], b = poly[(i + 1) % poly.size()], d = b - a;
     const double t = d.squaredNorm() > 0 ? std::clamp((q - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0;
     best = std::min(best, (a + t * d - q).norm());

@@ -32,7 +32,7 @@ struct VesselDrawing {
 };
 VesselDrawing vessel_drawing(const VesselDrawingOptions& options = {});
 
-/// Distance (same units) from q to the closed polygon.
-double distance_to_polygon(const reliefkit::Vec2& q, const std::vector<reliefkit::Vec2>& polygon);
+/// Distance (same units) from q to the polygon (closed) or polyline (open).
+double distance_to_polygon(const reliefkit::Vec2& q, const std::vector<reliefkit::Vec2>& polygon, bool closed = true);
 
 }  // namespace rktest

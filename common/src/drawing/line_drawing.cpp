@@ -119,9 +119,17 @@ cv::Mat drawing_ink(const cv::Mat& grey) {
   return ink;
 }
 
-std::vector<float> stroke_widths(const cv::Mat& ink) {
-  cv::Mat dist, peak;
+namespace {
+// The ink's distance to the paper (Euclidean, per ink pixel).
+cv::Mat ink_distance(const cv::Mat& ink) {
+  cv::Mat dist;
   cv::distanceTransform(ink, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  return dist;
+}
+
+// Stroke widths at the strokes' centres (the distance's 3 x 3 maxima): 2 d - 0.5.
+std::vector<float> widths_at_centres(const cv::Mat& ink, const cv::Mat& dist) {
+  cv::Mat peak;
   cv::dilate(dist, peak, cv::Mat());
   std::vector<float> widths;
   for (int y = 0; y < ink.rows; ++y)
@@ -130,6 +138,17 @@ std::vector<float> stroke_widths(const cv::Mat& ink) {
   return widths;
 }
 
+// 1, 2, 4, 8 px up to half the widest strokes' width (the 95th percentile).
+std::vector<double> scales_for(const std::vector<float>& widths) {
+  const double widest = stroke_width_percentile(widths, 0.95);
+  std::vector<double> scales{1};
+  while (scales.back() * 2 <= kMaxAutoLineScale && 0.5 * widest > scales.back() * std::sqrt(2.0)) scales.push_back(scales.back() * 2);
+  return scales;
+}
+}  // namespace
+
+std::vector<float> stroke_widths(const cv::Mat& ink) { return widths_at_centres(ink, ink_distance(ink)); }
+
 double stroke_width_percentile(std::vector<float> widths, double share) {
   if (widths.empty()) return 0;
   auto q = widths.begin() + long(std::clamp(share, 0.0, 1.0) * double(widths.size() - 1));
@@ -137,12 +156,7 @@ double stroke_width_percentile(std::vector<float> widths, double share) {
   return *q;
 }
 
-std::vector<double> auto_line_scales(const cv::Mat& grey) {
-  const double widest = stroke_width_percentile(stroke_widths(drawing_ink(grey)), 0.95);
-  std::vector<double> scales{1};
-  while (scales.back() * 2 <= kMaxAutoLineScale && 0.5 * widest > scales.back() * std::sqrt(2.0)) scales.push_back(scales.back() * 2);
-  return scales;
-}
+std::vector<double> auto_line_scales(const cv::Mat& grey) { return scales_for(stroke_widths(drawing_ink(grey))); }
 
 namespace {
 
@@ -343,15 +357,14 @@ void add_line_points(const cv::Mat& grey, const LineDetectionParams& p, const cv
 }
 
 // Each pixel's scale: the one nearest (in ratio) half the width of the strokes within 2 px of it
-// (the distance transform's largest value there), so that a stroke keeps one scale along itself.
-cv::Mat scale_index_map(const cv::Mat& grey, const std::vector<double>& scales) {
-  cv::Mat dist, width;
-  cv::distanceTransform(drawing_ink(grey), dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+// (the ink distance's largest value there), so that a stroke keeps one scale along itself.
+cv::Mat scale_index_map(const cv::Mat& dist, const std::vector<double>& scales) {
+  cv::Mat width;
   cv::dilate(dist, width, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(5, 5)));
-  cv::Mat index(grey.size(), CV_8U);
+  cv::Mat index(dist.size(), CV_8U);
 #pragma omp parallel for schedule(static)
-  for (int y = 0; y < grey.rows; ++y)
-    for (int x = 0; x < grey.cols; ++x) {
+  for (int y = 0; y < dist.rows; ++y)
+    for (int x = 0; x < dist.cols; ++x) {
       const double half_width = std::max(0.5, width.at<float>(y, x) - 0.25);  // (2 d - 0.5) / 2
       const int k = int(std::lround(std::log2(half_width / scales.front())));
       index.at<uchar>(y, x) = uchar(std::clamp(k, 0, int(scales.size()) - 1));
@@ -360,8 +373,13 @@ cv::Mat scale_index_map(const cv::Mat& grey, const std::vector<double>& scales) 
 }
 
 LinePoints detect_line_points(const cv::Mat& grey, const LineDetectionParams& p) {
-  const std::vector<double> scales = p.sigma > 0 ? std::vector<double>{p.sigma} : auto_line_scales(grey);
-  const cv::Mat scale_of = scales.size() > 1 ? scale_index_map(grey, scales) : cv::Mat();
+  std::vector<double> scales{p.sigma};
+  cv::Mat scale_of;  // empty: one scale everywhere
+  if (p.sigma == 0) {  // automatic: the ink's distance to the paper, computed once, gives both
+    const cv::Mat ink = drawing_ink(grey), dist = ink_distance(ink);
+    scales = scales_for(widths_at_centres(ink, dist));
+    if (scales.size() > 1) scale_of = scale_index_map(dist, scales);
+  }
   RowPoints rows(static_cast<size_t>(grey.rows));
   for (size_t k = 0; k < scales.size(); ++k) {
     LineDetectionParams at = p;

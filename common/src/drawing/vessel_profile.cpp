@@ -352,8 +352,8 @@ VesselProfile read_vessel_profile(const cv::Mat& image, const VesselParams& para
   const InkBox box = ink_box(ink);
   if (std::isnan(params.axis_x)) place_axis(ink, box, p); else p.axis_x = params.axis_x;
   if (p.axis_x < 0 || p.axis_x > ink.cols - 1)
-    throw InputError("Axis position " + std::to_string(p.axis_x) + " px is outside the drawing (0 to " +
-                     std::to_string(ink.cols - 1) + " px).");
+    throw InputError("Axis position " + std::to_string(int(p.axis_x)) + " px is outside the drawing (0 to " +
+                     std::to_string(ink.cols - 1) + " px; -1 finds it).");
   cv::Mat cells, cell_stats, centroids, dist;
   const int n = cv::connectedComponentsWithStats(~ink, cells, cell_stats, centroids, 4, CV_32S);
   std::vector<uchar> outer;

@@ -147,15 +147,7 @@ TEST(VesselProfile, AProfileLineGivesTheOuterWall) {
   EXPECT_EQ(p.kind, VesselSectionKind::ProfileLine);
   EXPECT_FALSE(p.closed);
   EXPECT_EQ(p.axis_gap, 0);
-  auto to_open = [](const Vec2& q, const std::vector<Vec2>& line) {
-    double best = 1e300;
-    for (size_t i = 0; i + 1 < line.size(); ++i) {
-      const Vec2 a = line[i], b = line[i + 1], u = b - a;
-      const double t = u.squaredNorm() > 0 ? std::clamp((q - a).dot(u) / u.squaredNorm(), 0.0, 1.0) : 0;
-      best = std::min(best, (a + t * u - q).norm());
-    }
-    return best;
-  };
+  auto to_open = [](const Vec2& q, const std::vector<Vec2>& line) { return rktest::distance_to_polygon(q, line, false); };
   const TriMesh m = revolve_vessel_profile(p, {});
   double off = 0, missed = 0;
   for (const Vec3& v : m.vertices) off = std::max(off, to_open(Vec2(std::hypot(v.x() - p.axis_x, v.z()), v.y()), d.exterior));
