@@ -30,8 +30,9 @@ const char* kCurvesInfo =
     "Method: the image is smoothed (Gaussian, <i>Line scale</i>); a pixel is on a line where the second "
     "derivative across the line is strong, the first vanishes (the line's centre, to a sub-pixel) and the "
     "image is dark; points are linked along the lines, pieces that face each other across a junction or a "
-    "corner are joined, strokes shorter than <i>Shortest stroke</i> (stippling, hatching, shading) are "
-    "dropped. ";
+    "corner are joined, strokes shorter than <i>Shortest stroke</i> (stippling) are dropped. Hatching and "
+    "cross-hatching (families of near-parallel strokes) go to a layer <i>&lt;image&gt; – shading</i>; each "
+    "object's outline is completed from its ink where no line was found along it. ";
 
 const char* kReliefInfo =
     "Builds a <b>3-D relief from a line drawing</b>: which side of each line is higher is decided "
@@ -41,7 +42,9 @@ const char* kReliefInfo =
     "<b>Output</b>: a new layer <i>&lt;image&gt; – relief</i> (made current) on a plane, on a cylinder whose "
     "circumference is the drawing's width (a roll-out drawing of a cup or a lamp), or on the current layer (the "
     "drawing projected onto it), with vertex quality = the height over the base and the per-vertex attribute <code>drawing_level</code> (the level "
-    "each part was given); a layer <i>&lt;image&gt; – curves</i> with the lines on the relief; and, beside the "
+    "each part was given); a layer <i>&lt;image&gt; – curves</i> with the lines on the relief, and <i>&lt;image&gt; – "
+    "shading</i> with the hatching's strokes (shading is no step; <i>Shading engraved</i> cuts it in as a "
+    "texture); and, beside the "
     "image, the <b>interpretation file</b> <i>&lt;image&gt;.interpretation.json</i>: every curve with its id, ends, "
     "sides and step. To change the result, edit a curve's <code>direction</code> (auto, left-lower, "
     "right-lower), <code>weight</code> (levels of its step, or a ridge's height) or <code>profile</code> (step, "
@@ -49,7 +52,7 @@ const char* kReliefInfo =
     "Method: thesis sect. 7.3 (the regions between the lines form a graph; it is directed from the ground "
     "up and levelled by topological order) and 7.4 (a smoothed step of width <i>Step width</i> across each "
     "line; the Laplacian of the relief is interpolated smoothly between the lines, eq. 7.4, then the relief, "
-    "eq. 7.6). ";
+    "eq. 7.6, kept within half a step of each part's level and above the ground). ";
 
 const QStringList kBases = {"Plane", "Cylinder (the drawing's width goes round it)",
                              "Current layer (the drawing projected onto it)"};
@@ -73,6 +76,17 @@ void drawing_parameters(RichParameterList& par) {
                          "A number: that one scale for every line (the thesis: 2 px)."));
   par.addParam(RichFloat("min_length", 12.f, "Shortest stroke (px)",
                          "Strokes shorter than this are taken for shading (stippling, hatching) and dropped."));
+  par.addParam(RichBool("shading", true, "Recognise shading",
+                        "Hatching and cross-hatching (families of near-parallel strokes, at least four, a few line "
+                        "widths apart) are shading, not the object's lines: they go to their own layer "
+                        "\"<image> – shading\" and take no part in the relief's regions, while the lines they end on "
+                        "still do. Untick when close parallel lines are the object's (fluting, a row of grooves)."));
+  par.addParam(RichFloat("outline_gap", 6.f, "Outline gaps closed (px, 0: none)",
+                         "Each drawn object (its ink, dots and hatching included, closed over gaps of up to twice "
+                         "this, holes filled) gets its outline where no line was found along it — an engraving draws "
+                         "an edge with the ends of its hatching, with dots or with a broken line — so that every "
+                         "object rises as one body from the paper. Objects drawn closer than twice this become one: "
+                         "lower it for views drawn close together."));
   add_dpi_and_scale_parameters(par);
 }
 
@@ -90,6 +104,8 @@ Drawing read_drawing(FilterCall& call) {
   if (d.detection.sigma > 0 && d.detection.sigma < 0.5)
     throw InputError("Line scale (px, 0: auto): 0 for automatic, or at least 0.5 px.");
   d.detection.min_length = read_float(call, "min_length", "Shortest stroke (px)", 0, 1e6);
+  d.detection.recognise_shading = call.params.getBool("shading");
+  d.detection.object_gap = read_float(call, "outline_gap", "Outline gaps closed (px, 0: none)", 0, 1000);
   d.pixel_mm = read_pixel_mm(call);
   if (call.progress) call.progress(2, "Reading the drawing");
   d.image = read_drawing_parameter(call, d.pixel_mm, &d.path);
@@ -105,6 +121,16 @@ Drawing read_drawing(FilterCall& call) {
                          .arg(d.detection.min_length)
                          .toStdString());
   return d;
+}
+
+const vcg::Color4b kShadingColour(150, 150, 150, 255);
+
+// What the log says of the shading strokes and the outline pieces added.
+QString shading_and_outlines(const DrawingCurves& c, long shading) {
+  return QString("%1 of the curves recognised as shading (hatching; layer \"– shading\"), %2 outline pieces added "
+                 "where an object's edge had no line.")
+      .arg(shading)
+      .arg(c.outline_pieces);
 }
 
 QString image_label(const Drawing& d, const char* what) { return QFileInfo(d.path).completeBaseName() + QString::fromUtf8(" – ") + what; }
@@ -124,14 +150,18 @@ void apply_curves(FilterCall& call) {
   const Drawing d = read_drawing(call);
   const double margins = read_float(call, "margins", "Margins (px, 0: none)", 0, 1000);
   const QString label = image_label(d, "curves");
-  add_curve_layer(call.doc, label, drawing_polylines(d.curves, d.pixel_mm), vcg::Color4b(20, 20, 20, 255));
+  const DrawingCurves shading = curves_where(d.curves, d.curves.shading, true);
+  add_curve_layer(call.doc, label, drawing_polylines(curves_where(d.curves, d.curves.shading, false), d.pixel_mm),
+                  vcg::Color4b(20, 20, 20, 255));
+  if (!shading.curves.empty())
+    add_curve_layer(call.doc, image_label(d, "shading"), drawing_polylines(shading, d.pixel_mm), kShadingColour);
   if (margins > 0) {
     DrawingCurves m;
     m.curves = margin_lines(d.curves, margins);
     add_curve_layer(call.doc, image_label(d, "margins"), drawing_polylines(m, d.pixel_mm), vcg::Color4b(40, 90, 220, 255));
   }
   call.log(QString("Line Drawing to Curves: \"%1\" %2 x %3 px; %4 curves (%5 px of lines, %6 junctions), %7 short strokes "
-                   "dropped; layer \"%8\", pixel %9 mm; %10 s.")
+                   "dropped; layer \"%8\", pixel %9 mm; %10 s. %11")
                .arg(QFileInfo(d.path).fileName())
                .arg(d.image.cols)
                .arg(d.image.rows)
@@ -141,7 +171,8 @@ void apply_curves(FilterCall& call) {
                .arg(d.curves.dropped_short)
                .arg(label)
                .arg(d.pixel_mm, 0, 'g', 4)
-               .arg(seconds_since(t0), 0, 'f', 2));
+               .arg(seconds_since(t0), 0, 'f', 2)
+               .arg(shading_and_outlines(d.curves, std::count(d.curves.shading.begin(), d.curves.shading.end(), char(1)))));
 }
 
 // ---- Relief from Line Drawing ----
@@ -169,6 +200,10 @@ void relief_parameters(MeshModel&, RichParameterList& par) {
   par.addParam(RichFloat("step_height", 0.5f, "Step height (% of the drawing's width)",
                          "Height of one level, as a percentage of the width of the drawn part of the image, so the "
                          "same script suits any DPI and scale."));
+  par.addParam(RichFloat("shading_depth", 0.f, "Shading engraved (steps, 0: none)",
+                         "With Recognise shading: the hatching's strokes cut into the relief as fine grooves this many "
+                         "steps deep (0.2: a texture that reads in raking light), so that the shaded parts show as "
+                         "they were drawn. 0: the shading is only in its own layer."));
   par.addParam(RichFloat("cell", 0.f, "Base resolution (px)",
                          "Spacing of the base's vertices in pixels of the drawing. 0: automatic: half the step width "
                          "(each step over four vertices) or a quarter of the narrowest region between curves, if "
@@ -195,6 +230,7 @@ ReliefSettings read_relief_settings(FilterCall& call) {
   s.relief.margin = read_float(call, "margin", "Step width (px)", 0.5, 1000);
   s.step_percent = read_float(call, "step_height", "Step height (% of the drawing's width)", 1e-6, 1000);
   s.cell = read_float(call, "cell", "Base resolution (px)", 0, 1000);
+  s.relief.shading_depth = read_float(call, "shading_depth", "Shading engraved (steps, 0: none)", 0, 100);
   return s;
 }
 
@@ -217,7 +253,8 @@ struct ReliefLayers {
   TriMesh surface;
   DrawingRelief relief;
   std::vector<double> level;  // per vertex: its region's level (-1 on a curve, uncovered)
-  Polylines curves;           // the drawing's curves on the relief
+  Polylines curves;           // the drawing's curves on the relief (structure)
+  Polylines shading;          // its shading strokes on the relief
   int base_vertices = 0;
   double spacing_px = 0;      // the base's vertex spacing in the drawing
 };
@@ -248,7 +285,8 @@ ReliefLayers relief_on_layer(FilterCall& call, const Drawing& d, const DrawingIn
   out.relief = reconstruct_drawing_relief(base, d.curves, di, s.relief, &proj.pixel);
   out.surface = displace_along_normals(base, out.relief.height);
   out.level = region_levels(di, proj.pixel);
-  out.curves = curves_on_projected_relief(d.curves, proj, out.surface);
+  out.curves = curves_on_projected_relief(curves_where(d.curves, di.shading, false), proj, out.surface);
+  out.shading = curves_on_projected_relief(curves_where(d.curves, di.shading, true), proj, out.surface);
   out.base_vertices = base.n_vertices();
   out.spacing_px = proj.edge_px;
   call.log(QString("Drawing projected along (%1, %2, %3) onto %4 of the layer's %5 vertices, %6 mesh units per pixel.")
@@ -293,7 +331,9 @@ ReliefLayers relief_on_grid(FilterCall& call, const Drawing& d, const DrawingInt
   for (int v = 0; v < grid.n_vertices(); ++v)
     pixel[size_t(v)] = Vec2(grid.vertices[size_t(v)].x() / d.pixel_mm, -grid.vertices[size_t(v)].y() / d.pixel_mm);
   out.level = region_levels(di, pixel);
-  out.curves = curves_on_grid_relief(d.curves, d.pixel_mm, area, cell, out.relief.height, shape, circumference, front);
+  for (bool shading : {false, true})
+    (shading ? out.shading : out.curves) = curves_on_grid_relief(curves_where(d.curves, di.shading, shading), d.pixel_mm,
+                                                                 area, cell, out.relief.height, shape, circumference, front);
   out.base_vertices = grid.n_vertices();
   out.spacing_px = cell;
   return out;
@@ -326,6 +366,7 @@ void apply_relief(FilterCall& call) {
   if (call.progress) call.progress(95, "Adding the layers");
   add_mesh_layer(call.doc, image_label(d, "relief"), r.surface, r.relief.height, {{"drawing_level", &r.level}}, true);
   add_curve_layer(call.doc, image_label(d, "curves"), r.curves, vcg::Color4b(200, 30, 30, 255));
+  if (di.shading_curves > 0) add_curve_layer(call.doc, image_label(d, "shading"), r.shading, kShadingColour);
   const int top = di.region_height.empty() ? 0 : std::max(0, *std::max_element(di.region_height.begin(), di.region_height.end()));
   call.log(QString("Relief from Line Drawing: %1 curves, %2 regions (%3 curves not between two regions), levels 0 to %4, "
                    "%14 regions rise; %5 curves fixed by the interpretation file; base %6, %7 vertices (%8 px apart), "
@@ -344,6 +385,9 @@ void apply_relief(FilterCall& call) {
                .arg(seconds_since(t0), 0, 'f', 2)
                .arg(written.isEmpty() ? QString() : " Interpretation written to " + written + ".")
                .arg(rising_regions(di)));
+  call.log(shading_and_outlines(d.curves, di.shading_curves) +
+           QString(" Free surface held within half a step of its region's level at %1 vertices.")
+               .arg(thousands(r.relief.bounded_vertices)));
 }
 
 }  // namespace

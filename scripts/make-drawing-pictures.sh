@@ -65,6 +65,23 @@ for d in lithic_replica_1.png:0:4 lithic_qesem_cave.png:0:4 cuneiform_P102630_ob
 done
 convert "${rows[@]}" -append -resize 1500x "$img/drawing_real.png"
 
+# 2b. The plate of 28 stone tools (../shared/data/drawings; its crop in tests/data when the shared
+# folder is absent): the drawing | the relief at the defaults, shaded, from above | with its shading
+# engraved 0.2 step deep (Shading engraved), turned.
+plate="$here/../shared/data/drawings/lithic_plate_morar_quartz.jpg"
+[ -f "$plate" ] || plate="$shared/lithic_plate_morar_quartz_crop.jpg"
+cp "$plate" "$out/plate.jpg"
+script "$out/plate.jpg" 0 0 4 >"$out/plate.mlx"
+sed -e 's#name="shading_depth" value="0"#name="shading_depth" value="0.2"#' "$out/plate.mlx" >"$out/plate_engraved.mlx"
+"$server" -s "$out/plate.mlx" -o "$out/plate_relief.ply" -l 0 -m vq >"$out/plate.log" 2>&1
+"$server" -s "$out/plate_engraved.mlx" -o "$out/plate_engraved.ply" -l 0 -m vq >"$out/plate_engraved.log" 2>&1
+convert "$out/plate.jpg" -resize 740x640 -gravity center -background white -extent 760x660 "$out/pl1.png"
+view "$out/pl2.png" 160 1 "$out/plate_relief.ply"
+view "$out/pl3.png" 160 2 "$out/plate_engraved.ply"
+label "$out/pl1.png" "plate of stone tools"; label "$out/pl2.png" "relief (defaults), turned"
+label "$out/pl3.png" "shading engraved 0.2 step, turned"
+convert "$out/pl1.png" "$out/pl2.png" "$out/pl3.png" +append -resize 1600x "$img/drawing_plate.png"
+
 # 3. Bases: the Qesem drawing rolled round a cylinder; the nested drawing on a dome (current layer).
 script "$out/qesem.png" 1 0 4 >"$out/cyl.mlx"
 "$server" -s "$out/cyl.mlx" -o "$out/cyl.ply" -l 0 -m vq >"$out/cyl.log" 2>&1
@@ -96,15 +113,15 @@ type Relief from Line
 sleep 2
 click 860 99
 sleep 3
-click 585 373
+click 585 385
 sleep 3
 type $out/qesem.png
 key Return
 sleep 2
 shot $out/gui_dialog.png
-click 479 764
+click 479 869
 sleep 20
-click 164 764
+click 164 869
 sleep 2
 click 231 10
 sleep 1

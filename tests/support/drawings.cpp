@@ -152,6 +152,52 @@ ShadedTool scarred_flake_drawing(double clearance) {
   return out;
 }
 
+namespace {
+// Parallel strokes `spacing` px apart at `angle` (radians) across the whole image, kept where `mask` is set.
+void hatch(cv::Mat& img, const cv::Mat& mask, double angle, double spacing) {
+  cv::Mat strokes(img.size(), CV_8U, cv::Scalar(0));
+  const double c = std::cos(angle), s = std::sin(angle), reach = img.cols + img.rows;
+  for (double o = -reach; o <= reach; o += spacing) {
+    const cv::Point2d mid(img.cols / 2.0 - s * o, img.rows / 2.0 + c * o);
+    cv::line(strokes, cv::Point(mid.x - c * reach, mid.y - s * reach), cv::Point(mid.x + c * reach, mid.y + s * reach),
+             cv::Scalar(255), 1, cv::LINE_AA);
+  }
+  cv::Mat keep;
+  cv::min(strokes, mask, keep);
+  cv::Mat inked = 255 - keep;
+  cv::min(img, inked, img);
+}
+}  // namespace
+
+HatchedSections hatched_sections_drawing(double clearance) {
+  cv::Mat img(620, 760, CV_8UC1, cv::Scalar(255));
+  std::vector<cv::Point> lens, rect{{420, 90}, {700, 90}, {700, 530}, {420, 530}};
+  for (int k = 0; k < 200; ++k) {
+    const double t = 2 * M_PI * k / 200;
+    lens.emplace_back(int(200 + 120 * std::cos(t)), int(310 + 230 * std::sin(t) * (0.8 + 0.2 * std::cos(t))));
+  }
+  const cv::Point disc_centre(560, 310);
+  const int disc_radius = 70;
+  cv::Mat lens_in(img.size(), CV_8U, cv::Scalar(0)), rect_in = lens_in.clone();
+  cv::fillPoly(lens_in, std::vector<std::vector<cv::Point>>{lens}, cv::Scalar(255));
+  cv::fillPoly(rect_in, std::vector<std::vector<cv::Point>>{rect}, cv::Scalar(255));
+  cv::circle(rect_in, disc_centre, disc_radius, cv::Scalar(0), -1);
+  hatch(img, lens_in, 0.8, 9);
+  hatch(img, rect_in, 0.6, 12);
+  hatch(img, rect_in, 0.6 + M_PI / 2, 12);
+  cv::polylines(img, std::vector<std::vector<cv::Point>>{lens, rect}, true, cv::Scalar(0), 3, cv::LINE_AA);
+  cv::circle(img, disc_centre, disc_radius, cv::Scalar(0), 3, cv::LINE_AA);
+  HatchedSections out;
+  out.lens = interior(img.size(), lens, clearance + 1.5);
+  out.rect = interior(img.size(), rect, clearance + 1.5);
+  std::vector<cv::Point> disc;
+  cv::ellipse2Poly(disc_centre, {disc_radius, disc_radius}, 0, 0, 360, 3, disc);
+  out.disc = interior(img.size(), disc, clearance + 1.5);
+  out.rect &= ~interior(img.size(), disc, -clearance - 1.5);
+  out.image = paper_and_jpeg(img, 0.02, 75);
+  return out;
+}
+
 cv::Mat paper_and_jpeg(const cv::Mat& grey8, double sigma, int quality) {
   cv::Mat f;
   grey8.convertTo(f, CV_32F, 1.0 / 255);

@@ -46,6 +46,17 @@ ShadedTool shaded_tool_drawing(int outline_px = 8, double clearance = 8);
 /// marks its interior `clearance` px inside the outline (`scar` is empty).
 ShadedTool scarred_flake_drawing(double clearance = 8);
 
+/// Sections as excavation reports hatch them (issue 23), 760 x 620 px, 3-px outlines: a lens-shaped
+/// section filled with parallel hatching (1-px strokes 9 px apart, ending on its outline); a
+/// rectangle cross-hatched (two families 12 px apart crossing at 90 degrees) around a disc left
+/// blank, the hatching ending on the disc's outline. Known: `lens` and `rect` rise as wholes (every
+/// part of each at one level), `disc` one level above the rectangle; each marks its interior
+/// `clearance` px from its lines (`rect` without the disc).
+struct HatchedSections {
+  cv::Mat image, lens, rect, disc;
+};
+HatchedSections hatched_sections_drawing(double clearance = 6);
+
 /// Paper texture (Gaussian noise, `sigma` of the white level) and JPEG compression at `quality`.
 cv::Mat paper_and_jpeg(const cv::Mat& grey8, double sigma, int quality);
 

@@ -45,7 +45,8 @@ std::string interpretation_to_json(const std::string& drawing_name, const Drawin
       "in levels (for a ridge or valley: its height in levels); profile 'step', 'ridge' or 'valley', with an optional "
       "free-form 'shape' [[t, value], ...] (t from -1, the left side, to 1); or 'spans': [{'from': 0, 'to': 0.5, "
       "'profile': ...}, ...] for several profiles along the curve (arc-length fractions). step = level right - "
-      "level left as interpreted. Format: docs/drawing_recon.md.";
+      "level left as interpreted. 'shading': true marks a stroke of hatching, left out of the regions; give it a "
+      "direction, weight or profile to make it a line of the relief. Format: docs/drawing_recon.md.";
   json curves = json::array();
   for (size_t k = 0; k < dc.curves.size(); ++k) {
     const auto& c = dc.curves[k];
@@ -60,6 +61,7 @@ std::string interpretation_to_json(const std::string& drawing_name, const Drawin
     e["left_region"] = have ? di.sides[k][0] : -1;
     e["right_region"] = have ? di.sides[k][1] : -1;
     e["step"] = k < di.step.size() ? di.step[k] : 0;
+    if (k < di.shading.size() && di.shading[k]) e["shading"] = true;
     e["direction"] = "auto";
     e["weight"] = k < di.weight.size() ? di.weight[k] : 0;
     const bool spans = k < di.profiles.size() && !di.profiles[k].empty();

@@ -36,6 +36,13 @@ int region_at(const cv::Mat& labels, const Vec2& p) {
 // Least samples for a pair of sides to count as a step of its curve (and at least a tenth of them).
 constexpr int kMinPairSamples = 4;
 
+// A curve the user's interpretation says something about is structure, whatever it looks like.
+bool direction_or_profile_given(const std::vector<CurveOverride>& overrides, int k) {
+  for (const CurveOverride& f : overrides)
+    if (f.curve == k) return true;
+  return false;
+}
+
 }  // namespace
 
 bool CurveOverride::is_step() const {
@@ -113,15 +120,16 @@ void bridge_near_ends(cv::Mat& ink, const std::vector<std::pair<Vec2, double>>& 
       }
 }
 
-// The curves drawn 2 px wide. Line detection fades where curves meet (a junction's profile is no
+// The structure curves (shading left out) drawn 2 px wide. Line detection fades where curves meet (a junction's profile is no
 // line's): each end is extended along its direction by its reach (end_reach), and ends within reach
 // of each other are joined, so that touching shapes close their regions.
-cv::Mat curve_ink(const DrawingCurves& dc, double gap_close) {
+cv::Mat curve_ink(const DrawingCurves& dc, double gap_close, const std::vector<char>& shading) {
   cv::Mat ink(dc.height, dc.width, CV_8U, cv::Scalar(0));
   std::vector<std::pair<Vec2, double>> ends;
   std::vector<size_t> owner;
   double cell = 1;
   for (size_t k = 0; k < dc.curves.size(); ++k) {
+    if (shading[k]) continue;
     const auto& c = dc.curves[k];
     std::vector<cv::Point> pts;
     for (const auto& q : c) pts.push_back(pixel_of(q));
@@ -215,6 +223,7 @@ RegionGraph region_graph(int nr, const std::vector<std::vector<std::array<int, 2
     if (!out.is_step[size_t(k)])
       for (const auto& pr : pairs[size_t(k)]) g.node[size_t(g.find(pr[0]))] = g.find(pr[1]);
   for (int k = 0; k < nc; ++k) {
+    if (out.shading[size_t(k)]) continue;
     if (pairs[size_t(k)].empty()) {
       ++out.ignored_curves;
       continue;
@@ -333,9 +342,13 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
   const int nc = static_cast<int>(dc.curves.size());
   DrawingInterpretation out;
   const auto direction = apply_overrides(p.overrides, nc, out);
+  out.shading.assign(size_t(nc), 0);
   if (dc.width <= 0 || dc.height <= 0) return out;
-  // Regions: the image minus the curves, 4-connected.
-  cv::Mat free = curve_ink(dc, p.gap_close) == 0, labels;
+  if (dc.shading.size() == size_t(nc))
+    for (int k = 0; k < nc; ++k)
+      if (dc.shading[size_t(k)] && !direction_or_profile_given(p.overrides, k)) out.shading[size_t(k)] = 1, ++out.shading_curves;
+  // Regions: the image minus the structure curves, 4-connected.
+  cv::Mat free = curve_ink(dc, p.gap_close, out.shading) == 0, labels;
   const int n = cv::connectedComponents(free, labels, 4, CV_32S);
   labels -= 1;  // the curves' label 0 becomes -1; regions 0 .. n-2
   out.regions = labels;
@@ -344,7 +357,8 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& dc, const Interpret
   const RegionStats st = region_stats(labels, nr, p.min_region_area);
   out.sides.assign(size_t(nc), {-1, -1});
   std::vector<std::vector<std::array<int, 2>>> pairs(static_cast<size_t>(nc));
-  for (int k = 0; k < nc; ++k) pairs[size_t(k)] = curve_sides(dc.curves[size_t(k)], labels, st, p.margin, out.sides[size_t(k)]);
+  for (int k = 0; k < nc; ++k)
+    if (!out.shading[size_t(k)]) pairs[size_t(k)] = curve_sides(dc.curves[size_t(k)], labels, st, p.margin, out.sides[size_t(k)]);
   RegionGraph g = region_graph(nr, pairs, direction, out);
   const std::vector<int> dist = distances_from_bases(g, st, p.paper_is_base, out);
   const std::vector<int> order = region_order(g, dist, st.area);
@@ -369,7 +383,10 @@ void require_rising_regions(const DrawingCurves& curves, const DrawingInterpreta
   std::ostringstream msg;
   msg << "No region of the drawing rises above the ground, so the relief would be a flat plane: " << nc
       << " curves, " << di.region_count << " regions, " << di.ignored_curves << " of the curves between no two regions";
-  if (di.ignored_curves * 2 >= nc)
+  if (di.shading_curves > 0)
+    msg << ", " << di.shading_curves << " recognised as shading (hatching: families of near-parallel strokes, left "
+           "out of the regions; if they are the object's lines, untick Recognise shading)";
+  if (di.ignored_curves > 0 && di.ignored_curves * 2 >= nc - di.shading_curves)
     msg << " (their ends are free: hatching, stippling or sketch strokes — or the two edges of an outline thicker "
            "than the line scale"
         << (line_scale_px > 0 ? " of " + std::to_string(int(std::lround(line_scale_px))) + " px" : std::string())

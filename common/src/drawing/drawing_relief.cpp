@@ -16,6 +16,7 @@
 namespace reliefkit {
 
 void DrawingReliefParams::validate() const {
+  require_range(shading_depth, "Shading engraved (steps)", 0, 100);
   require_range(margin, "Margin width (px)", 0.5, 1000);
   require_range(step_height, "Step height", 1e-12, 1e12);
   require_range(pixel_size, "Pixel size", 1e-12, 1e12);
@@ -188,23 +189,30 @@ CurveSegments curve_segments(const DrawingCurves& dc) {
   return s;
 }
 
-// Per pixel: the distance to the nearest curve pixel, that pixel and its segment.
+// Per pixel: the distance to the nearest pixel of a structure curve (shading strokes shape no
+// margin), that pixel and its segment.
 struct NearestInk {
   cv::Mat dist, label;                   // distance; label of the nearest ink pixel (1..n)
   std::vector<int> segment_of_label;     // per label
   std::vector<cv::Point> pixel_of_label;
 };
 
-NearestInk nearest_ink(const DrawingCurves& dc) {
+NearestInk nearest_ink(const DrawingCurves& dc, const std::vector<char>& shading) {
   cv::Mat seg_of(dc.height, dc.width, CV_32S, cv::Scalar(-1)), ink(dc.height, dc.width, CV_8U, cv::Scalar(255));
   int sid = 0;
-  for (const auto& c : dc.curves)
+  for (size_t k = 0; k < dc.curves.size(); ++k) {
+    const auto& c = dc.curves[k];
+    if (k < shading.size() && shading[k]) {
+      sid += int(c.size() > 1 ? c.size() - 1 : 0);
+      continue;
+    }
     for (size_t i = 1; i < c.size(); ++i, ++sid) {
       const cv::Point a(int(std::lround(c[i - 1].x())), int(std::lround(c[i - 1].y()))),
           b(int(std::lround(c[i].x())), int(std::lround(c[i].y())));
       cv::line(seg_of, a, b, cv::Scalar(sid), 1, cv::LINE_8);
       cv::line(ink, a, b, cv::Scalar(0), 1, cv::LINE_8);
     }
+  }
   NearestInk n;
   cv::distanceTransform(ink, n.dist, n.label, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
   // DIST_LABEL_PIXEL numbers the ink pixels 1..n: one entry per ink pixel, not per image pixel.
@@ -239,10 +247,14 @@ struct DrawingOnBase {
     if (pixel_of_vertex) return (*pixel_of_vertex)[size_t(v)];
     return Vec2(base.vertices[size_t(v)].x() / p.pixel_size, -base.vertices[size_t(v)].y() / p.pixel_size);
   }
+  // A vertex's region (-1 on a curve or outside the drawing).
+  int region_of(int v) const {
+    const Vec2 q = pixel(v);
+    return std::isfinite(q.x()) ? region_at_px(q.x(), q.y()) : -1;
+  }
   // A vertex's level (its region's, in mesh units; 0 on a curve or outside the drawing).
   double level_of(int v) const {
-    const Vec2 q = pixel(v);
-    const int reg = std::isfinite(q.x()) ? region_at_px(q.x(), q.y()) : -1;
+    const int reg = region_of(v);
     return reg >= 0 ? di.region_height[size_t(reg)] * p.step_height : 0.0;
   }
 };
@@ -321,7 +333,7 @@ bool margin_relief(const DrawingOnBase& d, const CurveSegments& segs, const Near
 void local_relief(const DrawingOnBase& d, std::vector<double>& r, std::vector<char>& in_margin) {
   const int nv = d.base.n_vertices();
   const CurveSegments segs = curve_segments(d.dc);
-  const NearestInk ink = nearest_ink(d.dc);
+  const NearestInk ink = nearest_ink(d.dc, d.di.shading);
   r.assign(size_t(nv), 0);
   in_margin.assign(size_t(nv), 0);
   for (int v = 0; v < nv; ++v) {
@@ -374,28 +386,101 @@ Eigen::VectorXd interpolated_laplacian(const Eigen::SparseMatrix<double>& K, con
   return Lap;
 }
 
-// Step 2 (eq. 7.6): R = r in the margins; Delta R = L, i.e. K R = -M L, elsewhere, started from
-// the interpretation's levels (what the thesis starts from).
-std::vector<double> interpolated_relief(const DrawingOnBase& d, const Eigen::SparseMatrix<double>& K,
-                                        const Eigen::VectorXd& mass, const Eigen::VectorXd& Lap,
-                                        const std::vector<double>& r, const std::vector<char>& in_margin,
-                                        SolveReport& report) {
+// One solve of step 2 (eq. 7.6): R = r where held; Delta R = L, i.e. K R = -M L, elsewhere, started
+// from `start` (the interpretation's levels: what the thesis starts from, or the previous pass).
+std::vector<double> relief_solve(const DrawingOnBase& d, const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& mass,
+                                 const Eigen::VectorXd& Lap, const std::vector<double>& r, const std::vector<char>& held,
+                                 const std::vector<double>& start, SolveReport& report) {
   const int nv = int(r.size());
-  const FreeSet f = free_where(in_margin);
+  const FreeSet f = free_where(held);
   Eigen::VectorXd Rc = Eigen::VectorXd::Zero(nv);
   for (int v = 0; v < nv; ++v)
-    if (in_margin[size_t(v)]) Rc[v] = r[size_t(v)];
+    if (held[size_t(v)]) Rc[v] = r[size_t(v)];
   const Eigen::VectorXd KRc = K * Rc;
   Eigen::VectorXd rhs(f.count), guess(f.count), Rf;
   for (int v = 0; v < nv; ++v)
     if (f.of_vertex[size_t(v)] >= 0) {
       rhs[f.of_vertex[size_t(v)]] = -mass[v] * Lap[v] - KRc[v];
-      guess[f.of_vertex[size_t(v)]] = d.level_of(v);
+      guess[f.of_vertex[size_t(v)]] = start[size_t(v)];
     }
   report = solve_free(K, mass, f.of_vertex, f.count, rhs, Rf, guess, d.p.solver);
   std::vector<double> height(static_cast<size_t>(nv));
   for (int v = 0; v < nv; ++v) height[size_t(v)] = f.of_vertex[size_t(v)] >= 0 ? Rf[f.of_vertex[size_t(v)]] : Rc[v];
   return height;
+}
+
+// How far the free surface may leave its region's level (steps), and how many solves it gets to
+// settle within that bound.
+constexpr double kFreeSurfaceBound = 0.5;
+constexpr int kMaxBoundPasses = 6;
+
+// Step 2, bounded: eq. 7.6 lets the interpolated Laplacian carry a margin's bend far into a region
+// (on a plate of 28 tools the paper sank 4.5 steps below the ground between them and rose 2.6 above
+// the highest level). Each free vertex is held within kFreeSurfaceBound steps of its region's level,
+// never below the ground (level 0):
+// where a solve leaves that range the vertex is held at the bound and the relief solved again (an
+// obstacle problem by active sets), until no vertex leaves it.
+std::vector<double> interpolated_relief(const DrawingOnBase& d, const Eigen::SparseMatrix<double>& K,
+                                        const Eigen::VectorXd& mass, const Eigen::VectorXd& Lap, std::vector<double> r,
+                                        std::vector<char> held, DrawingRelief& out) {
+  const int nv = int(r.size());
+  std::vector<double> height(static_cast<size_t>(nv));
+  for (int v = 0; v < nv; ++v) height[size_t(v)] = d.level_of(v);
+  const double bound = kFreeSurfaceBound * d.p.step_height, slack = 1e-3 * d.p.step_height;
+  const double top = d.p.step_height * (d.di.region_height.empty() ? 0 : *std::max_element(d.di.region_height.begin(),
+                                                                                           d.di.region_height.end()));
+  for (int pass = 0; pass <= kMaxBoundPasses; ++pass) {
+    if (pass < kMaxBoundPasses) height = relief_solve(d, K, mass, Lap, r, held, height, out.relief_solve);
+    long newly = 0;
+    for (int v = 0; v < nv; ++v) {
+      if (held[size_t(v)]) continue;
+      // On a curve's extension there is no region to keep to: between the ground and the top.
+      const bool region = d.region_of(v) >= 0;
+      const double level = d.level_of(v), h = height[size_t(v)];
+      const double lo = region ? std::max(0.0, level - bound) : 0.0, hi = (region ? level : top) + bound;
+      if (h >= lo - slack && h <= hi + slack) continue;
+      height[size_t(v)] = r[size_t(v)] = std::clamp(h, lo, hi);  // after the last pass: clamped
+      held[size_t(v)] = 1, ++newly;
+    }
+    out.bounded_vertices += newly;
+    if (newly == 0) break;
+  }
+  return height;
+}
+
+// The base's vertex spacing in pixels of the drawing: the median length of the faces' first edges.
+double spacing_px(const DrawingOnBase& d) {
+  std::vector<double> len;
+  for (const auto& f : d.base.faces) {
+    const double l = (d.pixel(f[1]) - d.pixel(f[0])).norm();
+    if (std::isfinite(l)) len.push_back(l);
+  }
+  if (len.empty()) return 1;
+  std::nth_element(len.begin(), len.begin() + long(len.size() / 2), len.end());
+  return len[len.size() / 2];
+}
+
+// The shading strokes as fine grooves (DrawingReliefParams::shading_depth steps deep): each vertex
+// within a groove's half-width of a stroke is lowered by depth x (1 - (dist / half)^2)^2. The
+// half-width is 1.5 px, or the vertex spacing where the base is coarser, so that a groove is seen.
+void engrave_shading(const DrawingOnBase& d, std::vector<double>& height) {
+  if (!(d.p.shading_depth > 0) || d.di.shading_curves == 0) return;
+  cv::Mat paper(d.dc.height, d.dc.width, CV_8U, cv::Scalar(255)), dist;
+  for (size_t k = 0; k < d.dc.curves.size(); ++k) {
+    if (k >= d.di.shading.size() || !d.di.shading[k]) continue;
+    std::vector<cv::Point> pts;
+    for (const auto& q : d.dc.curves[k]) pts.emplace_back(int(std::lround(q.x())), int(std::lround(q.y())));
+    cv::polylines(paper, pts, false, cv::Scalar(0), 1, cv::LINE_8);
+  }
+  cv::distanceTransform(paper, dist, cv::DIST_L2, cv::DIST_MASK_5);
+  const double half = std::max(1.5, spacing_px(d)), depth = d.p.shading_depth * d.p.step_height;
+  for (int v = 0; v < d.base.n_vertices(); ++v) {
+    const Vec2 q = d.pixel(v);
+    const int x = std::isfinite(q.x()) ? int(std::lround(q.x())) : -1, y = std::isfinite(q.y()) ? int(std::lround(q.y())) : -1;
+    if (x < 0 || y < 0 || x >= d.dc.width || y >= d.dc.height) continue;
+    const double t = dist.at<float>(y, x) / half;
+    if (t < 1) height[size_t(v)] -= depth * (1 - t * t) * (1 - t * t);
+  }
 }
 
 }  // namespace
@@ -428,7 +513,8 @@ DrawingRelief reconstruct_drawing_relief(const Surface& base, const DrawingCurve
   const Eigen::VectorXd rv = Eigen::Map<const Eigen::VectorXd>(r.data(), nv);
   const Eigen::VectorXd Lap = interpolated_laplacian(K, lap.mass, rv, out.in_margin, p.solver, out.laplacian_solve);
   out.laplacian.assign(Lap.data(), Lap.data() + nv);
-  out.height = interpolated_relief(d, K, lap.mass, Lap, r, out.in_margin, out.relief_solve);
+  out.height = interpolated_relief(d, K, lap.mass, Lap, r, out.in_margin, out);
+  engrave_shading(d, out.height);
   return out;
 }
 

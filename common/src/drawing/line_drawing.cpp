@@ -11,6 +11,7 @@
 #include <unordered_map>
 
 #include "reliefkit/base/scale.h"
+#include "reliefkit/drawing/shading.h"
 
 namespace reliefkit {
 
@@ -21,6 +22,7 @@ void LineDetectionParams::validate() const {
   require_range(min_length, "Minimum stroke length (px)", 0, 1e6);
   require_range(max_link_gap, "Link gap (px)", 1, 10);
   require_range(max_link_turn, "Link turn (radians)", 0, 3.2);
+  require_range(object_gap, "Object outline gap (px)", 0, 1000);
 }
 
 double DrawingCurves::total_length() const {
@@ -28,6 +30,18 @@ double DrawingCurves::total_length() const {
   for (const auto& c : curves)
     for (size_t i = 1; i < c.size(); ++i) len += (c[i] - c[i - 1]).norm();
   return len;
+}
+
+DrawingCurves curves_where(const DrawingCurves& dc, const std::vector<char>& flag, bool value) {
+  DrawingCurves out = dc;
+  out.curves.clear(), out.line_width.clear(), out.shading.clear();
+  for (size_t k = 0; k < dc.curves.size(); ++k) {
+    if ((k < flag.size() && flag[k] != 0) != value) continue;
+    out.curves.push_back(dc.curves[k]);
+    if (k < dc.line_width.size()) out.line_width.push_back(dc.line_width[k]);
+    if (k < dc.shading.size()) out.shading.push_back(dc.shading[k]);
+  }
+  return out;
 }
 
 std::vector<std::vector<Vec2>> margin_lines(const DrawingCurves& dc, double width) {
@@ -517,6 +531,8 @@ DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionPa
     out.curves.push_back(std::move(pieces[k]));
     out.line_width.push_back(2.0 * sigma[k]);
   }
+  out.shading = p.recognise_shading ? shading_strokes(grey, out) : std::vector<char>(out.curves.size(), 0);
+  out.outline_pieces = close_object_outlines(out, drawing_ink(grey), p.object_gap);
   return out;
 }
 

@@ -176,16 +176,21 @@ TEST(DrawingInterpretation, AReadingWhereNothingRisesIsRefusedWithWhatWasFound) 
   cv::Mat hatching(300, 300, CV_8UC1, cv::Scalar(255));
   for (int k = 0; k < 8; ++k) cv::line(hatching, {60 + 25 * k, 60}, {40 + 25 * k, 240}, cv::Scalar(0), 2, cv::LINE_AA);
   const DrawingCurves strokes = extract_drawing_curves(hatching);
-  const DrawingInterpretation flat = interpret_drawing(strokes);
-  EXPECT_EQ(rising_regions(flat), 0);
-  try {
-    require_rising_regions(strokes, flat, 2.0);
-    ADD_FAILURE() << "a flat reading was accepted";
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("No region of the drawing rises"), std::string::npos) << what;
-    EXPECT_NE(what.find("ends are free"), std::string::npos) << what;
-    EXPECT_NE(what.find("Line scale"), std::string::npos) << what;
+  for (bool shading : {true, false}) {  // strokes recognised as hatching, or taken as lines with free ends
+    DrawingCurves read = strokes;
+    if (!shading) read.shading.assign(read.curves.size(), 0);
+    const DrawingInterpretation flat = interpret_drawing(read);
+    EXPECT_EQ(rising_regions(flat), 0);
+    EXPECT_EQ(flat.shading_curves, shading ? 8 : 0);
+    try {
+      require_rising_regions(read, flat, 2.0);
+      ADD_FAILURE() << "a flat reading was accepted";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("No region of the drawing rises"), std::string::npos) << what;
+      EXPECT_NE(what.find(shading ? "8 recognised as shading" : "ends are free"), std::string::npos) << what;
+      EXPECT_NE(what.find("Line scale"), std::string::npos) << what;
+    }
   }
   cv::Mat disc(300, 300, CV_8UC1, cv::Scalar(255));
   cv::circle(disc, {150, 150}, 100, cv::Scalar(0), 2, cv::LINE_AA);
@@ -200,7 +205,7 @@ TEST(DrawingInterpretation, AReadingWhereNothingRisesIsRefusedWithWhatWasFound) 
 // At the automatic line scale (the filter's default), whatever the outline's width, at least 95 %
 // of the tool's interior rises and the scar stands one level above the part around it (hatching and
 // stippling change no level). At the fixed scale of 2 px a 12- or 16-px outline is traced as its two
-// edges and nothing rises.
+// edges and nothing rises, unless the object's outline is closed from the ink (close_object_outlines).
 TEST(DrawingInterpretation, AShadedToolWithAHeavyOutlineRisesWhole) {
   for (int outline : {4, 16}) {
     const rktest::ShadedTool d = rktest::shaded_tool_drawing(outline);
@@ -226,17 +231,24 @@ TEST(DrawingInterpretation, AShadedToolWithAHeavyOutlineRisesWhole) {
     EXPECT_GE(double(raised) / tool, 0.95) << outline;
     EXPECT_GE(double(on_part) / scar, 0.95) << outline;
   }
-  // The former fixed scale: the 16-px outline traced as its two edges, the paper between them a ring.
+  // The former fixed scale: the 16-px outline traced as its two edges, the paper between them a ring,
+  // nothing raised — unless the object's outline is closed from its ink (the default since).
   const rktest::ShadedTool heavy = rktest::shaded_tool_drawing(16);
-  const DrawingInterpretation at2 = interpret_drawing(extract_drawing_curves(heavy.image));
-  long tool = 0, raised = 0;
-  for (int y = 0; y < heavy.image.rows; ++y)
-    for (int x = 0; x < heavy.image.cols; ++x) {
-      const int r = at2.regions.at<int>(y, x);
-      if (r >= 0 && heavy.tool.at<uchar>(y, x)) ++tool, raised += at2.region_height[size_t(r)] >= 1;
-    }
-  std::printf("[shaded tool, 16-px outline, line scale 2 px] tool raised: %.3f\n", double(raised) / tool);
-  EXPECT_LT(double(raised) / tool, 0.5);
+  for (double gap : {0.0, 6.0}) {
+    LineDetectionParams at2;
+    at2.object_gap = gap;
+    const DrawingInterpretation di = interpret_drawing(extract_drawing_curves(heavy.image, at2));
+    long tool = 0, raised = 0;
+    for (int y = 0; y < heavy.image.rows; ++y)
+      for (int x = 0; x < heavy.image.cols; ++x) {
+        const int r = di.regions.at<int>(y, x);
+        if (r >= 0 && heavy.tool.at<uchar>(y, x)) ++tool, raised += di.region_height[size_t(r)] >= 1;
+      }
+    std::printf("[shaded tool, 16-px outline, line scale 2 px, outline gaps closed: %g px] tool raised: %.3f\n", gap,
+                double(raised) / tool);
+    if (gap > 0) EXPECT_GE(double(raised) / tool, 0.95);
+    else EXPECT_LT(double(raised) / tool, 0.5);
+  }
 }
 
 // Thin scar lines starting on an 8-px outline: at the automatic scale the outline is found at 4 px

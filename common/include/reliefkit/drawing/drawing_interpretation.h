@@ -68,7 +68,9 @@ struct DrawingInterpretation {
   std::vector<std::vector<ProfileSpan>> profiles;  // per curve (empty: a step along the whole curve)
   std::vector<char> is_step;          // per curve: separates two levels (not only ridges / valleys)
   std::vector<int> weight;            // per curve: the override's weight (0 automatic)
-  int ignored_curves = 0;             // curves with the same region (or none) on both sides
+  int ignored_curves = 0;             // curves with the same region (or none) on both sides (shading aside)
+  std::vector<char> shading;          // per curve: a shading stroke (DrawingCurves::shading), not in the regions
+  int shading_curves = 0;
 };
 
 /// Regions, sides and levels of the curves of a drawing. Throws InputError when the overrides'

@@ -22,6 +22,7 @@ struct DrawingReliefParams {
   double margin = 4;          // w, px: the half-width of a step's profile
   double step_height = 1;     // mesh units per level
   double pixel_size = 1;      // mesh units per pixel (image x right, y down -> mesh x right, y up)
+  double shading_depth = 0;   // steps: the shading strokes (DrawingInterpretation::shading) cut this deep as fine grooves
   /// Auto: conjugate gradients started from the interpretation's levels (the thesis' speed-up),
   /// CHOLMOD when they do not converge; Direct: CHOLMOD at once (the benchmark's comparison).
   SolverMethod solver = SolverMethod::Auto;
@@ -33,7 +34,8 @@ struct DrawingRelief {
   std::vector<char> in_margin;     // per base vertex: on a step's profile (a boundary condition)
   std::vector<double> laplacian;   // per base vertex: L of eq. 7.4
   SolveReport laplacian_solve;  // eq. 7.4
-  SolveReport relief_solve;      // eq. 7.6
+  SolveReport relief_solve;      // eq. 7.6 (its last pass)
+  long bounded_vertices = 0;     // free vertices held within half a step of their region's level
 };
 
 /// The relief (height over the base, per base vertex). Without `pixel_of_vertex` the base lies in

@@ -29,6 +29,8 @@ struct LineDetectionParams {
   double min_length = 12;      // px: shorter strokes are dropped
   double max_link_gap = 1.5;   // px between consecutive line points of one curve
   double max_link_turn = 0.6;  // radians between the directions of consecutive line points
+  bool recognise_shading = true;  // flag hatching strokes (DrawingCurves::shading, shading.h)
+  double object_gap = 6;       // px: objects' outlines closed over gaps up to twice this (close_object_outlines); 0: none
   /// Throws InputError naming the first parameter out of its range.
   void validate() const;
 };
@@ -36,10 +38,12 @@ struct LineDetectionParams {
 struct DrawingCurves {
   std::vector<std::vector<Vec2>> curves;  // polylines, pixel coordinates
   std::vector<double> line_width;         // per curve: its width class, px (twice the scale it was found at)
+  std::vector<char> shading;              // per curve: a stroke of hatching (shading.h), not structure
   std::vector<Vec2> junctions;            // where a curve ends on another one
   int width = 0, height = 0;              // of the image
   long long line_points = 0;              // before linking
   long long dropped_short = 0;            // curves dropped as shorter than min_length
+  int outline_pieces = 0;                 // curves added along objects' outlines (close_object_outlines)
   double total_length() const;
 };
 
@@ -70,6 +74,17 @@ constexpr double kMaxAutoLineScale = 8.0;
 /// peaks), so a thick outline and thin hatching are each found at their own scale and a stroke
 /// keeps one scale along itself. The strength threshold is scale-normalised.
 std::vector<double> auto_line_scales(const cv::Mat& grey);
+
+/// The outlines of the drawn objects where no structure curve runs along them, added as curves (2 px
+/// wide); returns how many. An object is the drawing's `ink` (drawing_ink: stippling and shading
+/// included) closed over gaps up to 2 x `radius` px, its holes filled: an engraving draws an
+/// object's edge with the ends of its hatching, with dots or with a broken line, and without these
+/// pieces the object stays open to the paper and cannot rise.
+int close_object_outlines(DrawingCurves& curves, const cv::Mat& ink, double radius);
+
+/// The curves whose flag (one per curve, e.g. DrawingCurves::shading) is `value`, with their widths
+/// and flags; junctions and counts stay those of the whole drawing.
+DrawingCurves curves_where(const DrawingCurves& curves, const std::vector<char>& flag, bool value);
 
 /// The margins of the curves (the thesis' fig. 7.2): each curve offset by `width` px to its left and
 /// to its right (per point, along the normal of the neighbouring segments), two polylines per curve.
