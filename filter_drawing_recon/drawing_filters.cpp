@@ -57,6 +57,8 @@ const char* kReliefInfo =
 const QStringList kBases = {"Plane", "Cylinder (the drawing's width goes round it)",
                              "Current layer (the drawing projected onto it)"};
 enum BaseChoice { kPlane, kCylinder, kCurrent };
+const QStringList kPlacements = {"Fitted to the layer (along the view direction)",
+                                 "As drawn (the drawing's frame: DPI and scale)"};
 const QStringList kGrounds = {"The paper around the drawing", "The most connected region (the thesis' heuristic)"};
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -194,6 +196,11 @@ void relief_parameters(MeshModel&, RichParameterList& par) {
   par.addParam(RichPoint3f("view", vcg::Point3f(0, 0, 0), "View direction (current layer)",
                            "Direction in which the drawing is projected onto the current layer (towards it). 0 0 0: "
                            "automatic, along the layer's axis of least extent (the normal of a plaque)."));
+  par.addParam(RichEnum("placement", 0, kPlacements, "Placement (current layer)",
+                        "How the drawing lies on the current layer. Fitted: projected along the view direction and "
+                        "scaled to the part of the layer facing it. As drawn: in the drawing's own frame (x right, y "
+                        "up, millimetres from DPI and scale, seen from +z) — for the decoration of a vessel's exterior, "
+                        "raised on the layer \"Vessel from Profile Drawing\" made from the same drawing."));
   par.addParam(RichFloat("margin", 4.f, "Step width (px)",
                          "Half-width of the smoothed step across each line, in pixels of the drawing. Closely drawn "
                          "lines need a small width; wide ones give softer steps."));
@@ -217,6 +224,7 @@ struct ReliefSettings {
   QString interpretation;  // the user's file ("" automatic)
   int ground = 0;
   int base = kPlane;
+  bool as_drawn = false;   // placement on the current layer: the drawing's frame, not fitted
   DrawingReliefParams relief;
   double step_percent = 0.5;
   double cell = 0;  // px; 0 automatic
@@ -227,6 +235,7 @@ ReliefSettings read_relief_settings(FilterCall& call) {
   s.interpretation = call.params.getOpenFileName("interpretation").trimmed();
   s.ground = read_enum(call, "ground", "Ground level", kGrounds.size());
   s.base = read_enum(call, "base", "Base", kBases.size());
+  s.as_drawn = read_enum(call, "placement", "Placement (current layer)", kPlacements.size()) == 1;
   s.relief.margin = read_float(call, "margin", "Step width (px)", 0.5, 1000);
   s.step_percent = read_float(call, "step_height", "Step height (% of the drawing's width)", 1e-6, 1000);
   s.cell = read_float(call, "cell", "Base resolution (px)", 0, 1000);
@@ -270,7 +279,7 @@ ReliefLayers relief_on_layer(FilterCall& call, const Drawing& d, const DrawingIn
   if (!std::isfinite(view.norm())) throw InputError("View direction: the numbers must be finite (0 0 0 for automatic).");
   View bv = view_of(call.mesh(), call.log);
   const Surface base = surface_of(bv);
-  const DrawingProjection proj = project_drawing(base, area, view);
+  const DrawingProjection proj = s.as_drawn ? project_drawing_as_drawn(base, area, d.pixel_mm) : project_drawing(base, area, view);
   s.relief.pixel_size = proj.pixel_size;
   s.relief.step_height = s.step_percent / 100 * area.width * proj.pixel_size;
   if (proj.edge_px > s.relief.margin / 2)

@@ -119,9 +119,9 @@ type $out/qesem.png
 key Return
 sleep 2
 shot $out/gui_dialog.png
-click 479 869
+click 479 897
 sleep 20
-click 164 869
+click 164 897
 sleep 2
 click 231 10
 sleep 1
@@ -132,6 +132,6 @@ sleep 4
 shot $out/gui_applied.png
 EOF
 "$here/scripts/gui-shots.sh" "$out/gui.txt" -- >/dev/null
-convert "$out/gui_dialog.png" -crop 645x790+0+0 +repage "$img/gui_drawing_relief_dialog.png"
+convert "$out/gui_dialog.png" -crop 645x900+0+0 +repage "$img/gui_drawing_relief_dialog.png"
 convert "$out/gui_applied.png" -resize 75% "$img/gui_drawing_relief_applied.png"
 echo "pictures written to $img"

@@ -607,12 +607,68 @@ struct DepthGrid {
 
 }  // namespace
 
+namespace {
+
+// Where the image lies on the base: pixel (px, py) at origin + px s right - py s up, seen along view.
+struct ImageFrame {
+  Vec3 view, right, up, origin;
+  double pixel_size = 1;
+};
+
+// The vertices facing the viewer (normal against the view).
+std::vector<char> facing_vertices(const Surface& surface, const Vec3& view) {
+  const std::vector<Vec3>& normals = surface.normals();
+  std::vector<char> facing(normals.size(), 0);
+  for (size_t v = 0; v < normals.size(); ++v) facing[v] = normals[v].dot(-view) > 0.05;
+  return facing;
+}
+
+// The drawing's `extent` laid on the base in `frame`: a vertex is covered when it faces the viewer,
+// nothing of the base lies in front of it (a grid of about two edge lengths keeps the nearest depth
+// per cell) and its pixel is within the extent.
+DrawingProjection cover_base(const Surface& surface, const std::vector<char>& facing, const ImageFrame& frame,
+                             const cv::Rect& extent, double edge) {
+  const TriMesh& base = surface.mesh();
+  const int nv = base.n_vertices();
+  DrawingProjection out;
+  out.view = frame.view, out.right = frame.right, out.up = frame.up, out.pixel_size = frame.pixel_size;
+  auto proj = [&](const Vec3& p, const Vec3& axis) { return (p - frame.origin).dot(axis); };
+  DepthGrid g;
+  for (int v = 0; v < nv; ++v)
+    if (facing[size_t(v)]) g.r.add(proj(base.vertices[v], frame.right)), g.u.add(proj(base.vertices[v], frame.up));
+  g.cell = 2 * edge;
+  g.w = std::max(1, int(g.r.size() / g.cell) + 1), g.h = std::max(1, int(g.u.size() / g.cell) + 1);
+  g.nearest.assign(size_t(g.w) * g.h, 1e300);
+  auto cell_of = [&](const Vec3& p) { return g.cell_of(proj(p, frame.right), proj(p, frame.up)); };
+  for (int v = 0; v < nv; ++v)
+    if (facing[size_t(v)]) {
+      double& n = g.nearest[cell_of(base.vertices[v])];
+      n = std::min(n, proj(base.vertices[v], frame.view));
+    }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  out.pixel.assign(size_t(nv), Vec2(nan, nan));
+  for (int v = 0; v < nv; ++v) {
+    if (!facing[size_t(v)]) continue;
+    const Vec3& p = base.vertices[v];
+    if (proj(p, frame.view) > g.nearest[cell_of(p)] + 3 * edge) continue;
+    const double px = proj(p, frame.right) / frame.pixel_size, py = -proj(p, frame.up) / frame.pixel_size;
+    constexpr double kSlack = 1e-6;  // rounding at the extent's edges
+    if (px < extent.x - kSlack || py < extent.y - kSlack || px > extent.x + extent.width - 1 + kSlack ||
+        py > extent.y + extent.height - 1 + kSlack)
+      continue;
+    out.pixel[size_t(v)] = Vec2(px, py);
+    ++out.covered;
+  }
+  out.edge_px = edge / frame.pixel_size;
+  return out;
+}
+
+}  // namespace
+
 DrawingProjection project_drawing(const Surface& surface, const cv::Rect& extent, Vec3 view) {
   surface.require_triangles();
   if (extent.width < 2 || extent.height < 2) throw InputError("The drawing is too small to project (at least 2 x 2 pixels).");
   const TriMesh& base = surface.mesh();
-  const int nv = base.n_vertices();
-  const std::vector<Vec3>& normals = surface.normals();
   const BaseShape shape = base_shape(base);
   Vec3 e_small = shape.axis[0], e_mid = shape.axis[1], e_big = shape.axis[2];
   if (view.norm() > 0 && std::isfinite(view.norm())) {
@@ -626,50 +682,37 @@ DrawingProjection project_drawing(const Surface& surface, const cv::Rect& extent
     // Along the axis of least extent, towards the side most of the area faces away from.
     view = shape.area_normal.dot(e_small) >= 0 ? Vec3(-e_small) : e_small;
   }
-  DrawingProjection out;
-  out.view = view;
   auto proj = [&](const Vec3& p, const Vec3& axis) { return (p - shape.centroid).dot(axis); };
-  // Candidates: vertices facing the viewer.
-  std::vector<char> facing(size_t(nv), 0);
+  const std::vector<char> facing = facing_vertices(surface, view);
   Span a, b;
-  for (int v = 0; v < nv; ++v) {
-    if (!(normals[size_t(v)].dot(-view) > 0.05)) continue;
-    facing[size_t(v)] = 1;
-    a.add(proj(base.vertices[v], e_big)), b.add(proj(base.vertices[v], e_mid));
-  }
+  for (int v = 0; v < base.n_vertices(); ++v)
+    if (facing[size_t(v)]) a.add(proj(base.vertices[v], e_big)), b.add(proj(base.vertices[v], e_mid));
   if (a.lo > a.hi) throw InputError("No part of the base faces the view direction: the drawing cannot be projected onto it.");
-  orient_image(view, e_big, e_mid, a, b, extent.width >= extent.height, out.right, out.up);
-  DepthGrid g;
-  for (int v = 0; v < nv; ++v)
-    if (facing[size_t(v)]) g.r.add(proj(base.vertices[v], out.right)), g.u.add(proj(base.vertices[v], out.up));
-  out.pixel_size = std::max(g.r.size() / (extent.width - 1), g.u.size() / (extent.height - 1));
-  if (!(out.pixel_size > 0)) throw InputError("The base's part facing the view has no extent across it.");
-  g.cell = 2 * shape.edge;  // about two edge lengths
-  g.w = std::max(1, int(g.r.size() / g.cell) + 1), g.h = std::max(1, int(g.u.size() / g.cell) + 1);
-  g.nearest.assign(size_t(g.w) * g.h, 1e300);
-  auto cell_of = [&](const Vec3& p) { return g.cell_of(proj(p, out.right), proj(p, out.up)); };
-  for (int v = 0; v < nv; ++v)
-    if (facing[size_t(v)]) {
-      double& n = g.nearest[cell_of(base.vertices[v])];
-      n = std::min(n, proj(base.vertices[v], view));
-    }
-  const double rc = 0.5 * (g.r.lo + g.r.hi), uc = 0.5 * (g.u.lo + g.u.hi);
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  out.pixel.assign(size_t(nv), Vec2(nan, nan));
-  for (int v = 0; v < nv; ++v) {
-    if (!facing[size_t(v)]) continue;
-    const Vec3& p = base.vertices[v];
-    if (proj(p, view) > g.nearest[cell_of(p)] + 3 * shape.edge) continue;
-    const double px = extent.x + 0.5 * (extent.width - 1) + (proj(p, out.right) - rc) / out.pixel_size;
-    const double py = extent.y + 0.5 * (extent.height - 1) - (proj(p, out.up) - uc) / out.pixel_size;
-    constexpr double kSlack = 1e-6;  // rounding at the fitted extent's edges
-    if (px < extent.x - kSlack || py < extent.y - kSlack || px > extent.x + extent.width - 1 + kSlack ||
-        py > extent.y + extent.height - 1 + kSlack)
-      continue;
-    out.pixel[size_t(v)] = Vec2(px, py);
-    ++out.covered;
-  }
-  out.edge_px = shape.edge / out.pixel_size;
+  ImageFrame f;
+  f.view = view;
+  orient_image(view, e_big, e_mid, a, b, extent.width >= extent.height, f.right, f.up);
+  Span r, u;  // the facing part's extent across the view
+  for (int v = 0; v < base.n_vertices(); ++v)
+    if (facing[size_t(v)]) r.add(proj(base.vertices[v], f.right)), u.add(proj(base.vertices[v], f.up));
+  f.pixel_size = std::max(r.size() / (extent.width - 1), u.size() / (extent.height - 1));
+  if (!(f.pixel_size > 0)) throw InputError("The base's part facing the view has no extent across it.");
+  // The extent's centre on the facing part's centre.
+  const double cx = extent.x + 0.5 * (extent.width - 1), cy = extent.y + 0.5 * (extent.height - 1);
+  f.origin = shape.centroid + (0.5 * (r.lo + r.hi) - cx * f.pixel_size) * f.right + (0.5 * (u.lo + u.hi) + cy * f.pixel_size) * f.up;
+  return cover_base(surface, facing, f, extent, shape.edge);
+}
+
+DrawingProjection project_drawing_as_drawn(const Surface& surface, const cv::Rect& extent, double pixel_size) {
+  surface.require_triangles();
+  if (!(pixel_size > 0) || !std::isfinite(pixel_size)) throw InputError("The drawing's pixel size must be a positive number.");
+  ImageFrame f;
+  f.view = Vec3(0, 0, -1), f.right = Vec3(1, 0, 0), f.up = Vec3(0, 1, 0), f.origin = Vec3::Zero(), f.pixel_size = pixel_size;
+  const std::vector<char> facing = facing_vertices(surface, f.view);
+  DrawingProjection out = cover_base(surface, facing, f, extent, base_shape(surface.mesh()).edge);
+  if (out.covered == 0)
+    throw InputError("Placed as drawn, the drawing covers no vertex of the layer facing it (+z): the layer is not in the "
+                     "drawing's frame (x right, y up, mm from the same DPI and scale) — made by \"Vessel from Profile "
+                     "Drawing\" from this drawing, say. Choose the placement fitted to the layer instead.");
   return out;
 }
 

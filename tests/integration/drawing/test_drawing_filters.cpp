@@ -46,6 +46,7 @@ struct ReliefArgs {
   double margin = 4, step = 0.5, cell = 0, dpi = 254, sigma = 0;  // the filter's defaults (0: automatic line scale)
   double shading_depth = 0;
   bool shading = true;
+  int placement = 0;  // current layer: fitted (0) or as drawn (1)
 };
 std::vector<std::string> relief_params(const std::string& path, const ReliefArgs& a = {}) {
   auto p = drawing_params(path, a.dpi, 1, a.sigma, a.shading);
@@ -53,6 +54,7 @@ std::vector<std::string> relief_params(const std::string& path, const ReliefArgs
   p.push_back(param_enum("ground", a.ground, 2));
   p.push_back(param_enum("base", a.base, 3));
   p.push_back(param_point("view", a.view.x(), a.view.y(), a.view.z()));
+  p.push_back(param_enum("placement", a.placement, 2));
   p.push_back(param_float("margin", a.margin));
   p.push_back(param_float("step_height", a.step));
   p.push_back(param_float("shading_depth", a.shading_depth));

@@ -537,6 +537,24 @@ TEST(DrawingRelief, ProfilesShapeTheReliefAcrossTheirCurves) {
 
 // A drawing projected onto a plane the user moved and turned in space lands where it was drawn,
 // upright; onto a spherical cap, the relief follows the levels over the curved base.
+// Placed as drawn: a plane in the drawing's frame (0.1 mm per pixel) gets each vertex's own pixel
+// exactly; a layer elsewhere is refused with a message, not covered by nothing in silence.
+TEST(DrawingRelief, PlacedAsDrawnInTheDrawingsFrame) {
+  const cv::Rect extent(20, 20, 161, 101);
+  TriMesh plane = drawing_grid(extent.width, extent.height, 4.0, 0.1, extent.x, extent.y);
+  const DrawingProjection pr = project_drawing_as_drawn(Surface::borrow(plane), extent, 0.1);
+  double worst = 0;
+  for (int v = 0; v < plane.n_vertices(); ++v) {
+    const Vec2 want(plane.vertices[size_t(v)].x() / 0.1, -plane.vertices[size_t(v)].y() / 0.1);
+    ASSERT_TRUE(std::isfinite(pr.pixel[size_t(v)].x())) << v;
+    worst = std::max(worst, (pr.pixel[size_t(v)] - want).norm());
+  }
+  EXPECT_EQ(pr.covered, plane.n_vertices());
+  EXPECT_LT(worst, 1e-9);
+  for (auto& q : plane.vertices) q += Vec3(1000, 0, 0);
+  EXPECT_THROW(project_drawing_as_drawn(Surface::borrow(plane), extent, 0.1), InputError);
+}
+
 TEST(DrawingRelief, ProjectionOntoABaseLayer) {
   const cv::Mat img = nested_drawing();
   const DrawingCurves c = extract_drawing_curves(img);

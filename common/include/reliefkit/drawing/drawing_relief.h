@@ -67,6 +67,11 @@ struct DrawingProjection {
 /// base lies in front of it.
 DrawingProjection project_drawing(const Surface& base, const cv::Rect& extent, Vec3 view = Vec3(0, 0, 0));
 DrawingProjection project_drawing(const TriMesh& base, const cv::Rect& extent, Vec3 view = Vec3(0, 0, 0));
+/// Lays the drawing's `extent` on the base in the drawing's own frame: pixel (px, py) at
+/// (px, -py) x `pixel_size` in the plane z = 0, seen from +z (the frame of "Vessel from Profile
+/// Drawing" and of the plane base), covered as above. For decoration drawn on a vessel's exterior,
+/// raised on the vessel made from the same drawing. Throws InputError when it covers nothing.
+DrawingProjection project_drawing_as_drawn(const Surface& base, const cv::Rect& extent, double pixel_size);
 
 /// The base's vertices moved along their normals by `height` (normals of the base).
 TriMesh displace_along_normals(const Surface& base, const std::vector<double>& height);
