@@ -435,8 +435,9 @@ std::vector<double> interpolated_relief(const DrawingOnBase& d, const Eigen::Spa
     for (int v = 0; v < nv; ++v) {
       if (held[size_t(v)]) continue;
       // On a curve's extension there is no region to keep to: between the ground and the top.
-      const bool region = d.region_of(v) >= 0;
-      const double level = d.level_of(v), h = height[size_t(v)];
+      const int reg = d.region_of(v);
+      const bool region = reg >= 0;
+      const double level = region ? d.di.region_height[size_t(reg)] * d.p.step_height : 0.0, h = height[size_t(v)];
       const double lo = region ? std::max(0.0, level - bound) : 0.0, hi = (region ? level : top) + bound;
       if (h >= lo - slack && h <= hi + slack) continue;
       height[size_t(v)] = r[size_t(v)] = std::clamp(h, lo, hi);  // after the last pass: clamped
@@ -465,14 +466,7 @@ double spacing_px(const DrawingOnBase& d) {
 // half-width is 1.5 px, or the vertex spacing where the base is coarser, so that a groove is seen.
 void engrave_shading(const DrawingOnBase& d, std::vector<double>& height) {
   if (!(d.p.shading_depth > 0) || d.di.shading_curves == 0) return;
-  cv::Mat paper(d.dc.height, d.dc.width, CV_8U, cv::Scalar(255)), dist;
-  for (size_t k = 0; k < d.dc.curves.size(); ++k) {
-    if (k >= d.di.shading.size() || !d.di.shading[k]) continue;
-    std::vector<cv::Point> pts;
-    for (const auto& q : d.dc.curves[k]) pts.emplace_back(int(std::lround(q.x())), int(std::lround(q.y())));
-    cv::polylines(paper, pts, false, cv::Scalar(0), 1, cv::LINE_8);
-  }
-  cv::distanceTransform(paper, dist, cv::DIST_L2, cv::DIST_MASK_5);
+  const cv::Mat dist = curve_distance(d.dc, d.di.shading, true);
   const double half = std::max(1.5, spacing_px(d)), depth = d.p.shading_depth * d.p.step_height;
   for (int v = 0; v < d.base.n_vertices(); ++v) {
     const Vec2 q = d.pixel(v);

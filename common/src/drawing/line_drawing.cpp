@@ -44,6 +44,18 @@ DrawingCurves curves_where(const DrawingCurves& dc, const std::vector<char>& fla
   return out;
 }
 
+cv::Mat curve_distance(const DrawingCurves& dc, const std::vector<char>& flag, bool value) {
+  cv::Mat paper(dc.height, dc.width, CV_8U, cv::Scalar(255)), dist;
+  for (size_t k = 0; k < dc.curves.size(); ++k) {
+    if ((k < flag.size() && flag[k] != 0) != value) continue;
+    std::vector<cv::Point> pts;
+    for (const auto& q : dc.curves[k]) pts.emplace_back(int(std::lround(q.x())), int(std::lround(q.y())));
+    cv::polylines(paper, pts, false, cv::Scalar(0), 1, cv::LINE_8);
+  }
+  cv::distanceTransform(paper, dist, cv::DIST_L2, cv::DIST_MASK_5);
+  return dist;
+}
+
 std::vector<std::vector<Vec2>> margin_lines(const DrawingCurves& dc, double width) {
   require_range(width, "Margin width (px)", 0, 1e6);
   std::vector<std::vector<Vec2>> out;
@@ -386,13 +398,26 @@ cv::Mat scale_index_map(const cv::Mat& dist, const std::vector<double>& scales) 
   return index;
 }
 
-LinePoints detect_line_points(const cv::Mat& grey, const LineDetectionParams& p) {
+// The drawing's ink, its distance to the paper and its stroke widths, computed once for the line
+// scales, the shading and the objects' outlines.
+struct InkStrokes {
+  cv::Mat ink, dist;
+  std::vector<float> widths;
+};
+
+InkStrokes ink_strokes(const cv::Mat& grey) {
+  InkStrokes s{drawing_ink(grey), cv::Mat(), {}};
+  s.dist = ink_distance(s.ink);
+  s.widths = widths_at_centres(s.ink, s.dist);
+  return s;
+}
+
+LinePoints detect_line_points(const cv::Mat& grey, const InkStrokes& strokes, const LineDetectionParams& p) {
   std::vector<double> scales{p.sigma};
   cv::Mat scale_of;  // empty: one scale everywhere
-  if (p.sigma == 0) {  // automatic: the ink's distance to the paper, computed once, gives both
-    const cv::Mat ink = drawing_ink(grey), dist = ink_distance(ink);
-    scales = scales_for(widths_at_centres(ink, dist));
-    if (scales.size() > 1) scale_of = scale_index_map(dist, scales);
+  if (p.sigma == 0) {  // automatic: the strokes' widths give the scales and each pixel's
+    scales = scales_for(strokes.widths);
+    if (scales.size() > 1) scale_of = scale_index_map(strokes.dist, scales);
   }
   RowPoints rows(static_cast<size_t>(grey.rows));
   for (size_t k = 0; k < scales.size(); ++k) {
@@ -516,7 +541,8 @@ DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionPa
   DrawingCurves out;
   const cv::Mat grey = drawing_grey(image);
   out.width = grey.cols, out.height = grey.rows;
-  const LinePoints lp = detect_line_points(grey, p);
+  const InkStrokes strokes = ink_strokes(grey);
+  const LinePoints lp = detect_line_points(grey, strokes, p);
   out.line_points = static_cast<long long>(lp.pts.size());
   std::vector<float> sigma;
   std::vector<std::vector<Vec2>> pieces = Linker(lp, p).pieces(out.junctions, sigma);
@@ -531,8 +557,8 @@ DrawingCurves extract_drawing_curves(const cv::Mat& image, const LineDetectionPa
     out.curves.push_back(std::move(pieces[k]));
     out.line_width.push_back(2.0 * sigma[k]);
   }
-  out.shading = p.recognise_shading ? shading_strokes(grey, out) : std::vector<char>(out.curves.size(), 0);
-  out.outline_pieces = close_object_outlines(out, drawing_ink(grey), p.object_gap);
+  out.shading = p.recognise_shading ? shading_strokes(grey, strokes.ink, out) : std::vector<char>(out.curves.size(), 0);
+  out.outline_pieces = close_object_outlines(out, strokes.ink, p.object_gap, stroke_width_percentile(strokes.widths, 0.9));
   return out;
 }
 

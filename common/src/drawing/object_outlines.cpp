@@ -22,8 +22,6 @@ constexpr int kMaxReachToCurve = 8;
 // Objects smaller than this (px^2: dust, specks of a scan) get no outline.
 constexpr int kMinObjectArea = 400;
 
-cv::Point pixel_of(const Vec2& q) { return cv::Point(int(std::lround(q.x())), int(std::lround(q.y()))); }
-
 // The objects (255 inside one): the ink, stippling and shading included, closed over gaps up to
 // 2 x `radius`, its holes filled; objects smaller than kMinObjectArea (dust, specks) left out. Two
 // objects drawn closer than the gap become one.
@@ -42,19 +40,6 @@ cv::Mat object_silhouettes(const cv::Mat& ink, double radius) {
       if (l > 0 && stats.at<int>(l, cv::CC_STAT_AREA) >= kMinObjectArea) out.at<uchar>(y, x) = 255;
     }
   return out;
-}
-
-// Per pixel: the distance to the nearest structure curve's centre line (shading strokes bound no region).
-cv::Mat structure_distance(const DrawingCurves& dc) {
-  cv::Mat centre(dc.height, dc.width, CV_8U, cv::Scalar(255)), dist;
-  for (size_t k = 0; k < dc.curves.size(); ++k) {
-    if (k < dc.shading.size() && dc.shading[k]) continue;
-    std::vector<cv::Point> pts;
-    for (const auto& q : dc.curves[k]) pts.push_back(pixel_of(q));
-    cv::polylines(centre, pts, false, cv::Scalar(0), 1, cv::LINE_8);
-  }
-  cv::distanceTransform(centre, dist, cv::DIST_L2, cv::DIST_MASK_5);
-  return dist;
 }
 
 // The stretches of a closed contour that run farther than `near` from every structure curve's
@@ -92,13 +77,14 @@ std::vector<std::vector<Vec2>> far_stretches(const std::vector<cv::Point>& conto
 
 }  // namespace
 
-int close_object_outlines(DrawingCurves& dc, const cv::Mat& ink, double radius) {
+int close_object_outlines(DrawingCurves& dc, const cv::Mat& ink, double radius, double stroke_width) {
   if (dc.curves.empty() || dc.width <= 0 || dc.height <= 0 || !(radius > 0)) return 0;
   if (ink.rows != dc.height || ink.cols != dc.width || ink.type() != CV_8U)
     throw InputError("close_object_outlines: the ink must be the drawing's (CV_8U, same size).");
-  const cv::Mat silhouettes = object_silhouettes(ink, radius), dist = structure_distance(dc);
+  // Distance to the structure curves' centre lines (shading strokes bound no region).
+  const cv::Mat silhouettes = object_silhouettes(ink, radius), dist = curve_distance(dc, dc.shading, false);
   // The contour runs along the ink's edge: half a stroke's width beside a curve that follows it.
-  const float near = float(kNearCurve + 0.5 * stroke_width_percentile(stroke_widths(ink), 0.9));
+  const float near = float(kNearCurve + 0.5 * stroke_width);
   std::vector<std::vector<cv::Point>> contours;
   cv::findContours(silhouettes, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
   int added = 0;

@@ -29,8 +29,8 @@ struct InkLines {
 // Least coherence for a pixel's direction to be read (at a crossing no direction dominates).
 constexpr double kMinCoherence = 0.5;
 
-InkLines ink_lines(const cv::Mat& grey) {
-  InkLines out{drawing_ink(grey), cv::Mat(), cv::Mat()};
+InkLines ink_lines(const cv::Mat& grey, const cv::Mat& ink) {
+  InkLines out{ink, cv::Mat(), cv::Mat()};
   cv::Mat smooth, gx, gy;
   cv::GaussianBlur(grey, smooth, cv::Size(), 1.0);
   cv::Sobel(smooth, gx, CV_32F, 1, 0, 3);
@@ -133,12 +133,12 @@ double hatched_share(const cv::Mat& grey, const InkLines& il, const DrawingCurve
 
 }  // namespace
 
-std::vector<char> shading_strokes(const cv::Mat& grey, const DrawingCurves& dc, const ShadingParams& p) {
+std::vector<char> shading_strokes(const cv::Mat& grey, const cv::Mat& ink, const DrawingCurves& dc, const ShadingParams& p) {
   p.validate();
   const int nc = int(dc.curves.size());
   std::vector<char> shading(static_cast<size_t>(nc), 0);
   if (nc == 0 || grey.empty()) return shading;
-  const InkLines il = ink_lines(grey);
+  const InkLines il = ink_lines(grey, ink);
 #pragma omp parallel for schedule(dynamic, 16)
   for (int k = 0; k < nc; ++k) shading[size_t(k)] = hatched_share(grey, il, dc, size_t(k), p) >= p.min_hatched_share;
   return shading;

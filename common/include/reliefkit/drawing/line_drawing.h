@@ -79,12 +79,17 @@ std::vector<double> auto_line_scales(const cv::Mat& grey);
 /// wide); returns how many. An object is the drawing's `ink` (drawing_ink: stippling and shading
 /// included) closed over gaps up to 2 x `radius` px, its holes filled: an engraving draws an
 /// object's edge with the ends of its hatching, with dots or with a broken line, and without these
-/// pieces the object stays open to the paper and cannot rise.
-int close_object_outlines(DrawingCurves& curves, const cv::Mat& ink, double radius);
+/// pieces the object stays open to the paper and cannot rise. `stroke_width`: the drawing's wider
+/// strokes (px; the contour runs along the ink's edge, half of it beside a curve that follows it).
+int close_object_outlines(DrawingCurves& curves, const cv::Mat& ink, double radius, double stroke_width);
 
 /// The curves whose flag (one per curve, e.g. DrawingCurves::shading) is `value`, with their widths
 /// and flags; junctions and counts stay those of the whole drawing.
 DrawingCurves curves_where(const DrawingCurves& curves, const std::vector<char>& flag, bool value);
+
+/// Per pixel (CV_32F): the distance to the nearest of the curves whose flag is `value` (drawn as
+/// 1-px lines); far everywhere when there is none.
+cv::Mat curve_distance(const DrawingCurves& curves, const std::vector<char>& flag, bool value);
 
 /// The margins of the curves (the thesis' fig. 7.2): each curve offset by `width` px to its left and
 /// to its right (per point, along the normal of the neighbouring segments), two polylines per curve.

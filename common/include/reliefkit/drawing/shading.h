@@ -28,8 +28,9 @@ struct ShadingParams {
   void validate() const;
 };
 
-/// Per curve of `curves` (found in `grey`, drawing_grey): 1 when it is a shading stroke, 0 when it
-/// is structure.
-std::vector<char> shading_strokes(const cv::Mat& grey, const DrawingCurves& curves, const ShadingParams& params = {});
+/// Per curve of `curves` (found in `grey`, drawing_grey, whose `ink` is drawing_ink's): 1 when it is
+/// a shading stroke, 0 when it is structure.
+std::vector<char> shading_strokes(const cv::Mat& grey, const cv::Mat& ink, const DrawingCurves& curves,
+                                  const ShadingParams& params = {});
 
 }  // namespace reliefkit
