@@ -37,7 +37,8 @@ const char* kBaseInfo =
     "compared with the library's (models normalised to their principal axes, every way of facing the views "
     "tried); the best model's silhouette vertices pulled onto the drawing's outlines, depth kept, while its "
     "Laplacian coordinates are preserved (eq. 7.8) — one sparse Cholesky solve per pass, passes repeated while "
-    "the fit improves (1 pass: the thesis). ";
+    "the fit improves (1 pass: the thesis); a model of more than 40,000 faces makes its passes on a coarse "
+    "copy of at most 20,000 and moves as the copy does (the fit is still measured on the model). ";
 
 const char* kBaseCitation =
     "M. Kolomenkin, G. Leifman, I. Shimshoni, A. Tal, <b>\"Reconstruction of relief objects from line "

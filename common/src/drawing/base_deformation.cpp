@@ -5,9 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "reliefkit/base/coarsening.h"
 #include "reliefkit/base/laplacian.h"
 #include "reliefkit/base/solvers.h"
 #include "reliefkit/base/surface.h"
@@ -91,27 +93,36 @@ double silhouette_error(const TriMesh& mesh, const std::vector<ViewOutline>& vie
 namespace {
 constexpr double kAnchor = 1e-6;  // keeps vertices of parts no view constrains where they are
 
-// What stays the same in every pass: the model's Laplacian coordinates (eq. 7.7) and its edges.
-struct DeformSystem {
-  Eigen::SparseMatrix<double> L, LtL;
-  Eigen::MatrixXd V0, delta;           // the model's positions and Laplacian coordinates
-  std::vector<MeshEdge> edges;         // for the contour generators
-  double edge = 0;                     // mean edge length: raster size and matching slack
+// What stays the same in every pass for finding the model's silhouettes: its edges, its mean
+// edge and each view's outline densely sampled.
+struct SilhouetteSetting {
+  std::vector<MeshEdge> edges;           // for the contour generators
+  double edge = 0;                       // mean edge length: raster size and matching slack
   std::vector<std::vector<Vec2>> dense;  // each view's outline, densely sampled
 };
 
-DeformSystem deform_system(const Surface& model, const std::vector<ViewOutline>& views) {
-  DeformSystem s;
-  const TriMesh& mesh = model.mesh();
-  const int n = mesh.n_vertices();
-  s.L = uniform_laplacian(model.topology().ring);
-  s.LtL = (s.L.transpose() * s.L).pruned();
-  s.V0.resize(n, 3);
-  for (int i = 0; i < n; ++i) s.V0.row(i) = mesh.vertices[size_t(i)].transpose();
-  s.delta = s.L * s.V0;
-  s.edges = mesh_edges(mesh, model.topology().faces);
-  s.edge = edge_length_stats(mesh).mean;
+SilhouetteSetting silhouette_setting(const Surface& model, const std::vector<ViewOutline>& views) {
+  SilhouetteSetting s;
+  s.edges = mesh_edges(model.mesh(), model.topology().faces);
+  s.edge = edge_length_stats(model.mesh()).mean;
   for (const auto& v : views) s.dense.push_back(silhouette::densify(v.outline, outline_diagonal(v.outline) / 3000));
+  return s;
+}
+
+// What stays the same in every pass of the solve: the Laplacian coordinates (eq. 7.7) of the mesh
+// solved for — the model, or its coarse copy.
+struct LaplacianSystem {
+  Eigen::SparseMatrix<double> L, LtL;
+  Eigen::MatrixXd V0, delta;  // the positions and their Laplacian coordinates
+};
+
+LaplacianSystem laplacian_system(const TriMesh& mesh, const VertexRing& ring) {
+  LaplacianSystem s;
+  s.L = uniform_laplacian(ring);
+  s.LtL = (s.L.transpose() * s.L).pruned();
+  s.V0.resize(mesh.n_vertices(), 3);
+  for (int i = 0; i < mesh.n_vertices(); ++i) s.V0.row(i) = mesh.vertices[size_t(i)].transpose();
+  s.delta = s.L * s.V0;
   return s;
 }
 
@@ -285,7 +296,7 @@ void add_view_targets(const TriMesh& current, const ViewOutline& view, const Vie
   }
 }
 
-Targets silhouette_targets(const TriMesh& current, const DeformSystem& sys, const std::vector<ViewOutline>& views,
+Targets silhouette_targets(const TriMesh& current, const SilhouetteSetting& sys, const std::vector<ViewOutline>& views,
                            int resolution) {
   const int n = current.n_vertices();
   Targets t{Eigen::VectorXd::Zero(n), Eigen::MatrixXd::Zero(n, 3), 0};
@@ -299,13 +310,59 @@ Targets silhouette_targets(const TriMesh& current, const DeformSystem& sys, cons
   return t;
 }
 
-// One solve of eq. 7.8's normal equations: (alpha LtL + W + eps) V = alpha Lt delta_ref + V' + eps V0.
-// The pattern is the same in every pass, the values whenever the targets' weights are.
-Eigen::MatrixXd solve_pass(const DeformSystem& sys, const Targets& t, const Eigen::MatrixXd& Ltdelta_ref, double alpha,
-                           SpdFactorization& factorization, std::string& summary) {
-  Eigen::SparseMatrix<double> A = alpha * sys.LtL;
-  for (int i = 0; i < A.rows(); ++i) A.coeffRef(i, i) += t.weight[i] + kAnchor;
-  const Eigen::MatrixXd B = alpha * Ltdelta_ref + t.sum + kAnchor * sys.V0;
+// eq. 7.8's silhouette term, sum of w_i |x_i - t_i|^2 over the pulled vertices, in the solve's
+// unknowns X as (M, B) of its normal equations: on the model x = X, so M = W and B = sum of w t;
+// on the coarse copy x_i = m_i + P_i (X - V0) (m: the model's rest positions, V0: the copy's), so
+// M = Psᵀ W Ps and B = Psᵀ W (t - m + Ps V0) — M within the pattern of PᵀP.
+struct PullTerm {
+  Eigen::SparseMatrix<double> M;
+  Eigen::MatrixXd B;
+};
+
+PullTerm pull_on_model(const Targets& t) {
+  PullTerm pull{Eigen::SparseMatrix<double>(t.weight.size(), t.weight.size()), t.sum};
+  pull.M.setIdentity();
+  pull.M = pull.M * t.weight.asDiagonal();
+  return pull;
+}
+
+// The model and its coarse copy: the copy's vertices are the solve's unknowns, the model moves as
+// the copy does (P, coarsening.h).
+struct CoarseCopy {
+  CoarseMesh coarse;
+  Interpolation P;
+};
+
+PullTerm pull_on_copy(const Targets& t, const TriMesh& model, const CoarseCopy& copy, const Eigen::MatrixXd& V0) {
+  std::vector<int> pulled;
+  for (int i = 0; i < model.n_vertices(); ++i)
+    if (t.weight[i] > 0) pulled.push_back(i);
+  const long k = long(pulled.size());
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::VectorXd w(k);
+  Eigen::MatrixXd b(k, 3);
+  for (long r = 0; r < k; ++r) {
+    const int i = pulled[size_t(r)];
+    for (Interpolation::InnerIterator it(copy.P, i); it; ++it) entries.emplace_back(int(r), int(it.col()), it.value());
+    w[r] = t.weight[i];
+    b.row(r) = t.sum.row(i) / t.weight[i] - model.vertices[size_t(i)].transpose();
+  }
+  Eigen::SparseMatrix<double> Ps(k, V0.rows());
+  Ps.setFromTriplets(entries.begin(), entries.end());
+  b += Ps * V0;
+  const Eigen::SparseMatrix<double> PsT = Ps.transpose();
+  const Eigen::SparseMatrix<double> WPs = w.asDiagonal() * Ps;
+  return {PsT * WPs, PsT * (w.asDiagonal() * b)};
+}
+
+// One solve of eq. 7.8's normal equations: (alpha LtL + M + eps) X = alpha Lt delta_ref + B + eps V0.
+Eigen::MatrixXd solve_pass(const LaplacianSystem& sys, const PullTerm& pull, const Eigen::MatrixXd& Ltdelta_ref,
+                           double alpha, SpdFactorization& factorization, std::string& summary) {
+  Eigen::SparseMatrix<double> anchor(sys.LtL.rows(), sys.LtL.cols());
+  anchor.setIdentity();
+  // A sum, not coeffRef: a vertex of the coarse copy in no face has no diagonal entry in LtL.
+  const Eigen::SparseMatrix<double> A = alpha * sys.LtL + pull.M + kAnchor * anchor;
+  const Eigen::MatrixXd B = alpha * Ltdelta_ref + pull.B + kAnchor * sys.V0;
   Eigen::MatrixXd X;
   SolverOptions o;
   o.label = "Least-squares solve (Cholesky)";
@@ -332,54 +389,103 @@ void check_deform_input(const Surface& model, const std::vector<ViewOutline>& vi
 void set_positions(TriMesh& mesh, const Eigen::MatrixXd& X) {
   for (int i = 0; i < mesh.n_vertices(); ++i) mesh.vertices[size_t(i)] = X.row(i).transpose();
 }
-}  // namespace
 
-TriMesh deform_to_outlines(const Surface& model, const std::vector<ViewOutline>& views, const DeformParams& params,
-                           DeformReport* report) {
-  check_deform_input(model, views, params);
-  auto progress = [&](int pc, const char* what) { if (params.progress) params.progress(pc, what); };
+// The model moved as its coarse copy was (X against the copy's rest positions V0).
+TriMesh moved_as_copy(const TriMesh& model, const CoarseCopy& copy, const Eigen::MatrixXd& X, const Eigen::MatrixXd& V0) {
+  const Eigen::MatrixXd shift = copy.P * (X - V0);
+  TriMesh out = model;
+  for (size_t i = 0; i < out.vertices.size(); ++i) out.vertices[i] += shift.row(long(i)).transpose();
+  return out;
+}
+
+// RMS |L(v') - L(v)| / RMS |L(v)| of the model's uniform Laplacian coordinates.
+double laplacian_change(const Surface& model, const TriMesh& moved) {
+  const Eigen::SparseMatrix<double> L = uniform_laplacian(model.topology().ring);
+  Eigen::MatrixXd V0(moved.n_vertices(), 3), V1(moved.n_vertices(), 3);
+  for (int i = 0; i < moved.n_vertices(); ++i) {
+    V0.row(i) = model.mesh().vertices[size_t(i)].transpose();
+    V1.row(i) = moved.vertices[size_t(i)].transpose();
+  }
+  const Eigen::MatrixXd delta = L * V0;
+  const double d0 = delta.norm();
+  return d0 > 0 ? (L * V1 - delta).norm() / d0 : 0;
+}
+
+using StageProgress = std::function<void(int percent, const char* what)>;
+
+// Another pass while the last three brought the silhouette closer by 0.2 % of the outline's size
+// (a large change can get worse for a pass before it gets better).
+bool still_improving(std::vector<double>& history, const TriMesh& current, const std::vector<ViewOutline>& views) {
+  history.push_back(silhouette_error(current, views, 512));
+  if (history.back() < 2e-3) return false;
+  return history.size() < 4 || history[history.size() - 4] - history.back() >= 2e-3;
+}
+
+// The passes: the model's silhouettes found on the model, the least-squares solve on the model
+// itself (coarse null: the thesis' method) or on its coarse copy (the model then moved as the copy).
+TriMesh deform_in_passes(const Surface& model, const CoarseCopy* copy, const std::vector<ViewOutline>& views,
+                         const DeformParams& params, DeformReport& rep, const StageProgress& progress) {
   progress(2, "Laplacian coordinates");
-  const DeformSystem sys = deform_system(model, views);
-  // The pattern is the same in every pass: ordered once. For a single pass AMD (measured on a
-  // 117 K-face jug: 0.07 s to order, 0.73 s to factor); for several, CHOLMOD's own choice (0.7 s
-  // to order, but 0.5 s per factorization).
-  SpdFactorization factorization(params.passes == 1 ? SpdFactorization::Ordering::Amd : SpdFactorization::Ordering::Best);
-  Eigen::MatrixXd Ltdelta_ref = sys.L.transpose() * sys.delta;
+  const SilhouetteSetting setting = silhouette_setting(model, views);
+  const TriMesh* coarse = copy ? &copy->coarse.mesh : nullptr;
+  const LaplacianSystem sys = coarse ? laplacian_system(*coarse, vertex_rings(*coarse, vertex_faces(*coarse)))
+                                     : laplacian_system(model.mesh(), model.topology().ring);
+  // On the model the pattern is the same in every pass: ordered once. For a single pass AMD
+  // (measured on a 117 K-face jug: 0.07 s to order, 0.73 s to factor); for several, CHOLMOD's own
+  // choice (0.7 s to order, but 0.5 s per factorization). On the copy the pull's pattern follows
+  // the silhouette, so each pass is ordered again: AMD, quick on a copy of <= 20 K faces.
+  SpdFactorization factorization(params.passes == 1 || copy ? SpdFactorization::Ordering::Amd : SpdFactorization::Ordering::Best);
+  Eigen::MatrixXd Ltdelta_ref = sys.L.transpose() * sys.delta, X = sys.V0;
   TriMesh current = model.mesh();
-  DeformReport rep;
-  rep.hausdorff_before = silhouette_error(current, views);
   std::vector<double> history;  // silhouette error after each pass
   for (int pass = 0; pass < params.passes; ++pass) {
     const int p0 = 5 + 90 * pass / params.passes, p1 = 5 + 90 * (pass + 1) / params.passes;
     progress(p0, "Silhouette of the model");
-    const Targets targets = silhouette_targets(current, sys, views, params.resolution);
+    const Targets targets = silhouette_targets(current, setting, views, params.resolution);
     rep.silhouette_vertices = targets.constrained;
     progress((p0 + p1) / 2, "Least-squares solve (Cholesky)");
     // The first pass is the thesis' solve; a further pass keeps the Laplacian coordinates of the
     // pass before (the deformation grows in steps, so that a large change — a cylinder made a
     // goblet — is reached, not just begun).
-    const Eigen::MatrixXd X = solve_pass(sys, targets, Ltdelta_ref, params.alpha, factorization, rep.solver);
-    set_positions(current, X);
+    const PullTerm pull = copy ? pull_on_copy(targets, model.mesh(), *copy, sys.V0) : pull_on_model(targets);
+    X = solve_pass(sys, pull, Ltdelta_ref, params.alpha, factorization, rep.solver);
+    if (copy) current = moved_as_copy(model.mesh(), *copy, X, sys.V0);
+    else set_positions(current, X);
     rep.passes = pass + 1;
-    if (pass + 1 == params.passes) break;
-    // Another pass while the last three brought the silhouette closer by 0.2 % of the outline's
-    // size (a large change can get worse for a pass before it gets better).
-    history.push_back(silhouette_error(current, views, 512));
-    if (history.back() < 2e-3) break;
-    if (history.size() >= 4 && history[history.size() - 4] - history.back() < 2e-3) break;
+    if (pass + 1 == params.passes || !still_improving(history, current, views)) break;
     Ltdelta_ref = sys.L.transpose() * (sys.L * X);
   }
-  progress(97, "Measuring the result");
   rep.solver += "; " + std::to_string(factorization.factorizations()) + " factorization(s) in " + std::to_string(rep.passes) +
                 " pass(es)";
-  Eigen::MatrixXd V1(current.n_vertices(), 3);
-  for (int i = 0; i < current.n_vertices(); ++i) V1.row(i) = current.vertices[size_t(i)].transpose();
-  const double d0 = sys.delta.norm();
-  rep.laplacian_change = d0 > 0 ? (sys.L * V1 - sys.delta).norm() / d0 : 0;
-  rep.hausdorff_after = silhouette_error(current, views);
+  return current;
+}
+}  // namespace
+
+TriMesh deform_to_outlines(const Surface& model, const std::vector<ViewOutline>& views, const DeformParams& params,
+                           DeformReport* report) {
+  check_deform_input(model, views, params);
+  const StageProgress progress = [&](int pc, const char* what) { if (params.progress) params.progress(pc, what); };
+  DeformReport rep;
+  rep.hausdorff_before = silhouette_error(model.mesh(), views);
+  // A large model's passes solve on a coarse copy (coarsening.h): the displacement is smooth over
+  // the surface and the model's detail rides on it, and a pass then factorizes a fraction of the
+  // model's system. Its silhouettes are still the model's own.
+  CoarseCopy copy;
+  const bool on_copy = params.passes > 1 && params.coarse_faces > 0 && model.mesh().n_faces() > 2 * params.coarse_faces;
+  if (on_copy) {
+    progress(1, "Coarse copy of the model");
+    copy.coarse = coarsen_mesh(model.mesh(), params.coarse_faces);
+    copy.P = interpolation_from_coarse(model.mesh(), copy.coarse);
+    rep.coarse_faces = copy.coarse.mesh.n_faces();
+  }
+  const TriMesh out = deform_in_passes(model, on_copy ? &copy : nullptr, views, params, rep, progress);
+  if (on_copy) rep.solver += " on a coarse copy of " + std::to_string(rep.coarse_faces) + " faces";
+  progress(97, "Measuring the result");
+  rep.laplacian_change = laplacian_change(model, out);
+  rep.hausdorff_after = silhouette_error(out, views);
   if (report) *report = rep;
   progress(100, "Deformed");
-  return current;
+  return out;
 }
 
 TriMesh deform_to_outlines(const TriMesh& model, const std::vector<ViewOutline>& views, const DeformParams& params,
