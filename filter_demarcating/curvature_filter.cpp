@@ -45,7 +45,7 @@ double quantity(Quantity q, double k1, double k2) {
   return 0;
 }
 
-void parameters(MeshModel&, RichParameterList& par) {
+void parameters(const MeshModel&, RichParameterList& par) {
   par.addParam(RichEnum("estimator", 0, kEstimators, "Estimator",
                         "How curvature is measured. The jet fit is accurate also on irregular scans. The "
                         "per-face fit is a little faster and fine for curvature on regular meshes, but its "
@@ -139,7 +139,7 @@ FilterSpec curvature_tensor_filter(int id) {
                     "Compute Curvature Tensor and Derivatives",
                     kInfo,
                     // Not a colouring filter: MeshLab would switch the view to the (white) vertex colours.
-                    MeshFilterInterface::Normal,
+                    ml::FilterInterface::Normal,
                     MeshModel::MM_NONE,
                     MeshModel::MM_VERTCURVDIR | MeshModel::MM_VERTQUALITY,
                     parameters,

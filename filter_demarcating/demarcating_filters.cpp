@@ -55,7 +55,7 @@ DemarcatingParams read_params(FilterCall& call) {
   return p;
 }
 
-void demarcating_parameters(MeshModel&, RichParameterList& par) {
+void demarcating_parameters(const MeshModel&, RichParameterList& par) {
   common_parameters(par);
   par.addParam(RichFloat("min_length", float(DemarcatingParams::kDefaultMinLengthEdges), "Minimum curve length",
                          "Drops curve pieces shorter than this many edge lengths (specks of noise). 0 keeps all."));
@@ -123,7 +123,7 @@ void apply_demarcating(FilterCall& call) {
   log_curves(call, p, r, label, view.mesh.n_faces(), secs);
 }
 
-void shading_parameters(MeshModel&, RichParameterList& par) {
+void shading_parameters(const MeshModel&, RichParameterList& par) {
   par.addParam(RichFloat("contrast", 1.0f, "Contrast",
                          "How strongly curvature is turned into light and dark. At 1 the curvature of the "
                          "mesh's most curved tenth (its relief) gives three-quarter light or dark; larger "
@@ -170,7 +170,7 @@ FilterSpec demarcating_curves_filter(int id) {
   return FilterSpec{id,
                     "Demarcating Curves",
                     QString(kDemarcatingInfo) + kCitation,
-                    MeshFilterInterface::FilterClass(MeshFilterInterface::Normal | MeshFilterInterface::Layer),
+                    ml::FilterInterface::FilterClass(ml::FilterInterface::Normal | ml::FilterInterface::Layer),
                     MeshModel::MM_NONE,
                     MeshModel::MM_VERTQUALITY,
                     demarcating_parameters,
@@ -182,7 +182,7 @@ FilterSpec curvature_shading_filter(int id) {
   return FilterSpec{id,
                     "Curvature Shading",
                     QString(kShadingInfo) + "Method: " + kCitation,
-                    MeshFilterInterface::VertexColoring,
+                    ml::FilterInterface::VertexColoring,
                     MeshModel::MM_NONE,
                     MeshModel::MM_VERTCOLOR | MeshModel::MM_VERTQUALITY,
                     shading_parameters,

@@ -50,7 +50,7 @@ QString shipped_library() {
   return QFileInfo(dir).isDir() ? dir : QString();
 }
 
-void base_parameters(MeshModel&, RichParameterList& par) {
+void base_parameters(const MeshModel&, RichParameterList& par) {
   add_drawing_image_parameter(par, "The drawing of the object: dark lines on light paper (PNG, JPEG, TIFF, BMP).");
   par.addParam(RichString("views", "front", "Views",
                           "Which views the image shows: \"front\" (the largest outline is the front view); \"front; "
@@ -320,7 +320,7 @@ FilterSpec base_from_silhouette_filter(int id) {
   FilterSpec s{id,
                "Base from Drawing Silhouette",
                QString(kBaseInfo) + kBaseCitation,
-               MeshFilterInterface::MeshCreation,
+               ml::FilterInterface::MeshCreation,
                MeshModel::MM_NONE,
                MeshModel::MM_NONE,
                base_parameters,

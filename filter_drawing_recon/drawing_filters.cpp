@@ -139,7 +139,7 @@ QString image_label(const Drawing& d, const char* what) { return QFileInfo(d.pat
 
 // ---- Line Drawing to Curves ----
 
-void curves_parameters(MeshModel&, RichParameterList& par) {
+void curves_parameters(const MeshModel&, RichParameterList& par) {
   drawing_parameters(par);
   par.addParam(RichFloat("margins", 0.f, "Margins (px, 0: none)",
                          "When positive, a second layer \"<image> – margins\" shows each curve's margins: the curve "
@@ -179,7 +179,7 @@ void apply_curves(FilterCall& call) {
 
 // ---- Relief from Line Drawing ----
 
-void relief_parameters(MeshModel&, RichParameterList& par) {
+void relief_parameters(const MeshModel&, RichParameterList& par) {
   drawing_parameters(par);
   par.addParam(RichOpenFile("interpretation", "", QStringList{"*.json"}, "Interpretation file",
                             "Empty: automatic. Otherwise a JSON interpretation file (as this filter writes beside the "
@@ -193,7 +193,7 @@ void relief_parameters(MeshModel&, RichParameterList& par) {
                         "width is the circumference); or the current layer (any mesh: a scan of the object, or its "
                         "smooth base), onto which the drawing is projected along the view direction, scaled to fit "
                         "the part of it that faces the view."));
-  par.addParam(RichPoint3f("view", vcg::Point3f(0, 0, 0), "View direction (current layer)",
+  par.addParam(ml::RichDirection("view", vcg::Point3f(0, 0, 0), "View direction (current layer)",
                            "Direction in which the drawing is projected onto the current layer (towards it). 0 0 0: "
                            "automatic, along the layer's axis of least extent (the normal of a plaque)."));
   par.addParam(RichEnum("placement", 0, kPlacements, "Placement (current layer)",
@@ -405,7 +405,7 @@ FilterSpec drawing_curves_filter(int id) {
   FilterSpec s{id,
                "Line Drawing to Curves",
                QString(kCurvesInfo) + kCitation,
-               MeshFilterInterface::MeshCreation,
+               ml::FilterInterface::MeshCreation,
                MeshModel::MM_NONE,
                MeshModel::MM_NONE,
                curves_parameters,
@@ -419,7 +419,7 @@ FilterSpec drawing_relief_filter(int id) {
   FilterSpec s{id,
                "Relief from Line Drawing",
                QString(kReliefInfo) + kCitation,
-               MeshFilterInterface::MeshCreation,
+               ml::FilterInterface::MeshCreation,
                MeshModel::MM_NONE,
                MeshModel::MM_NONE,
                relief_parameters,

@@ -6,8 +6,7 @@
 
 class ReliefKitDrawingPlugin : public reliefkit::ml::ReliefKitPlugin {
   Q_OBJECT
-  MESHLAB_PLUGIN_IID_EXPORTER(MESH_FILTER_INTERFACE_IID)
-  Q_INTERFACES(MeshFilterInterface)
+  RELIEFKIT_FILTER_PLUGIN
  public:
   ReliefKitDrawingPlugin();
 };

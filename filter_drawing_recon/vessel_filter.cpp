@@ -30,7 +30,7 @@ const char* kVesselInfo =
 
 const QStringList kSides = {"Found in the drawing", "Left of the axis", "Right of the axis"};
 
-void vessel_parameters(MeshModel&, RichParameterList& par) {
+void vessel_parameters(const MeshModel&, RichParameterList& par) {
   add_drawing_image_parameter(par, "The profile drawing: a half-section (or a profile line) of a vessel, dark lines "
                                    "on light paper (PNG, JPEG, TIFF, BMP).");
   add_dpi_and_scale_parameters(par);
@@ -93,7 +93,7 @@ FilterSpec vessel_from_profile_filter(int id) {
   FilterSpec s{id,
                "Vessel from Profile Drawing",
                kVesselInfo,
-               MeshFilterInterface::MeshCreation,
+               ml::FilterInterface::MeshCreation,
                MeshModel::MM_NONE,
                MeshModel::MM_NONE,
                vessel_parameters,

@@ -150,7 +150,7 @@ void write_scale(FilterCall& call, const View& view, const OptimalScale& s) {
   write_vertex_attribute(call.mesh().cm, view, "optimal_scale", s.sigma);
 }
 
-void optimal_parameters(MeshModel&, RichParameterList& par) {
+void optimal_parameters(const MeshModel&, RichParameterList& par) {
   add_curve_type(par);
   add_scale_range(par);
   par.addParam(RichBool("quality", true, "Vertex quality = scale",
@@ -184,7 +184,7 @@ void apply_optimal(FilterCall& call) {
   call.log(histogram(s));
 }
 
-void smoothed_parameters(MeshModel&, RichParameterList& par) {
+void smoothed_parameters(const MeshModel&, RichParameterList& par) {
   add_curve_type(par);
   add_scale_range(par);
   add_length(par, "final_smoothing", Length::automatic(), "Final smoothing",
@@ -215,7 +215,7 @@ void apply_smoothed(FilterCall& call) {
   call.log(histogram(s));
 }
 
-void ridges_parameters(MeshModel&, RichParameterList& par) {
+void ridges_parameters(const MeshModel&, RichParameterList& par) {
   par.addParam(RichFloat("threshold", 1.f, "Strength threshold",
                          "Keeps lines at least this strong, relative to the automatic threshold (1). Smaller values "
                          "show fainter lines, larger only the clearest."));
@@ -264,7 +264,7 @@ void apply_ridges(FilterCall& call) {
                    .arg(threshold > 0 ? p.relative_threshold * strongest / threshold : 0.0, 0, 'g', 3));
 }
 
-void relief_parameters(MeshModel&, RichParameterList& par) {
+void relief_parameters(const MeshModel&, RichParameterList& par) {
   par.addParam(RichFloat("min_length", float(ReliefEdgeParams::kDefaultMinLengthEdges), "Minimum curve length",
                          "Drops edge pieces shorter than this many edge lengths. 0 keeps all."));
   par.addParam(RichFloat("gap", float(ReliefEdgeParams::kDefaultLinkGapEdges), "Bridge gaps up to",
@@ -305,12 +305,12 @@ void apply_relief(FilterCall& call) {
                  .arg(r.curves.steepest_crossing / kDeg, 0, 'f', 1));
 }
 
-constexpr auto kLayers = MeshFilterInterface::FilterClass(MeshFilterInterface::Normal | MeshFilterInterface::Layer);
+constexpr auto kLayers = ml::FilterInterface::FilterClass(ml::FilterInterface::Normal | ml::FilterInterface::Layer);
 
 }  // namespace
 
 FilterSpec optimal_scale_filter(int id) {
-  return FilterSpec{id, "Compute Optimal Scale", with_method(kOptimalInfo), MeshFilterInterface::Normal,
+  return FilterSpec{id, "Compute Optimal Scale", with_method(kOptimalInfo), ml::FilterInterface::Normal,
                     MeshModel::MM_NONE, MeshModel::MM_VERTQUALITY, optimal_parameters, apply_optimal};
 }
 

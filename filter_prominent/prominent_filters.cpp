@@ -117,7 +117,7 @@ void log_field(FilterCall& call, const ProminentFieldResult& f, const ProminentF
 
 // ---- Prominent Field ----
 
-void field_filter_parameters(MeshModel&, RichParameterList& par) {
+void field_filter_parameters(const MeshModel&, RichParameterList& par) {
   field_parameters(par);
   par.addParam(RichEnum("quality", 0, kFieldQuality, "Vertex quality",
                         "What to store in vertex quality (for Colorize by vertex quality)."));
@@ -173,7 +173,7 @@ void apply_field(FilterCall& call) {
 
 // ---- Prominent Enhancement ----
 
-void enhance_parameters(MeshModel&, RichParameterList& par) {
+void enhance_parameters(const MeshModel&, RichParameterList& par) {
   add_length(par, "sigma_c", Length::automatic(), "Smoothing scale (sigma_c)",
              "How far the bilateral filter averages (Gaussian scale; neighbours within twice it count), in edge "
              "lengths. auto: 1.5 edge lengths. Larger removes coarser bumps but may round small letters.");
@@ -234,7 +234,7 @@ void apply_enhance(FilterCall& call) {
 
 // ---- Prominent Coloring ----
 
-void coloring_parameters(MeshModel&, RichParameterList& par) {
+void coloring_parameters(const MeshModel&, RichParameterList& par) {
   par.addParam(RichEnum("curvature", 0, kColoringCurvature, "Colour by",
                         "Prominent curvature (the thesis' prominent coloring) shows edges crisply and the rest smooth; "
                         "mean and maximal curvature are the classic colourings, for comparison."));
@@ -277,7 +277,7 @@ FilterSpec prominent_field_filter(int id) {
   return FilterSpec{id,
                     "Prominent Field",
                     QString(kFieldInfo) + kCitation,
-                    MeshFilterInterface::Normal,
+                    ml::FilterInterface::Normal,
                     MeshModel::MM_NONE,
                     MeshModel::MM_VERTCURVDIR | MeshModel::MM_VERTQUALITY,
                     field_filter_parameters,
@@ -288,7 +288,7 @@ FilterSpec prominent_enhancement_filter(int id) {
   return FilterSpec{id,
                     "Prominent Enhancement",
                     QString(kEnhanceInfo) + kCitation,
-                    MeshFilterInterface::FilterClass(MeshFilterInterface::Smoothing | MeshFilterInterface::Layer),
+                    ml::FilterInterface::FilterClass(ml::FilterInterface::Smoothing | ml::FilterInterface::Layer),
                     MeshModel::MM_NONE,
                     MeshModel::MM_NONE,
                     enhance_parameters,
@@ -300,7 +300,7 @@ FilterSpec prominent_coloring_filter(int id) {
   return FilterSpec{id,
                     "Prominent Coloring",
                     QString(kColoringInfo) + "Method: " + kCitation,
-                    MeshFilterInterface::VertexColoring,
+                    ml::FilterInterface::VertexColoring,
                     MeshModel::MM_NONE,
                     MeshModel::MM_VERTCOLOR | MeshModel::MM_VERTQUALITY,
                     coloring_parameters,

@@ -59,7 +59,7 @@ void log_unconverged(FilterCall& call, const BaseNormals& b, double scale, doubl
                .arg(edge > 0 ? scale / edge : 0.0, 0, 'f', 1));
 }
 
-void relief_parameters(MeshModel&, RichParameterList& par) {
+void relief_parameters(const MeshModel&, RichParameterList& par) {
   add_presmoothing(par);
   add_base_scale(par);
   add_length(par, "edge_smoothing", Length::automatic(), "Edge smoothing",
@@ -164,7 +164,7 @@ void apply_relief(FilterCall& call) {
   log_relief(call, r, p);
 }
 
-void base_parameters(MeshModel&, RichParameterList& par) {
+void base_parameters(const MeshModel&, RichParameterList& par) {
   add_base_scale(par);
   par.addParam(RichBool("quality", true, "Vertex quality = tilt against the base",
                         "Put the angle (degrees) between the surface normal and the base normal into vertex quality."));
@@ -200,7 +200,7 @@ void apply_base(FilterCall& call) {
                .arg(ms.edge > 0 ? o.scale / ms.edge : 0.0, 0, 'f', 1));
 }
 
-void ridge_parameters(MeshModel&, RichParameterList& par) {
+void ridge_parameters(const MeshModel&, RichParameterList& par) {
   par.addParam(RichFloat("threshold", 1.f, "Strength threshold",
                          "Keeps lines at least this curved, relative to the automatic threshold (1). Smaller values "
                          "show fainter lines, larger only the sharpest."));
@@ -251,18 +251,18 @@ void apply_ridges(FilterCall& call) {
 
 FilterSpec relief_edges_filter(int id) {
   return FilterSpec{id, "Relief Edges", kReliefInfo,
-                    MeshFilterInterface::FilterClass(MeshFilterInterface::Normal | MeshFilterInterface::Layer),
+                    ml::FilterInterface::FilterClass(ml::FilterInterface::Normal | ml::FilterInterface::Layer),
                     MeshModel::MM_NONE, MeshModel::MM_VERTQUALITY, relief_parameters, apply_relief, true};
 }
 
 FilterSpec base_normals_filter(int id) {
-  return FilterSpec{id, "Estimate Base Normals", kBaseInfo, MeshFilterInterface::Normal, MeshModel::MM_NONE,
+  return FilterSpec{id, "Estimate Base Normals", kBaseInfo, ml::FilterInterface::Normal, MeshModel::MM_NONE,
                     MeshModel::MM_VERTQUALITY, base_parameters, apply_base};
 }
 
 FilterSpec ridges_valleys_filter(int id) {
   return FilterSpec{id, "Ridges and Valleys", kRidgeInfo,
-                    MeshFilterInterface::FilterClass(MeshFilterInterface::Normal | MeshFilterInterface::Layer),
+                    ml::FilterInterface::FilterClass(ml::FilterInterface::Normal | ml::FilterInterface::Layer),
                     MeshModel::MM_NONE, MeshModel::MM_NONE, ridge_parameters, apply_ridges, true};
 }
 

@@ -46,7 +46,7 @@ def main():
     ap.add_argument('--limit', type=int, default=100)
     ap.add_argument('--top', type=int, default=15)
     ap.add_argument('paths', nargs='*', default=['common', 'filter_demarcating', 'filter_relief_edges',
-                                                 'filter_multiscale', 'filter_prominent', 'filter_drawing_recon'])
+                                                 'filter_multiscale', 'filter_prominent', 'filter_drawing_recon', 'batch'])
     a = ap.parse_args()
     found = []
     for root in a.paths:

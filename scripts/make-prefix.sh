@@ -8,8 +8,9 @@ set -euo pipefail
 prefix="$1"; ours="$2"; sys="${3:-/usr/lib/x86_64-linux-gnu/meshlab}"
 libdir="$prefix/lib/x86_64-linux-gnu/meshlab"
 mkdir -p "$prefix/bin" "$libdir/plugins"
-for b in meshlab meshlabserver; do
-  [ -x "/usr/bin/$b" ] || { echo "make-prefix: /usr/bin/$b missing (install the meshlab package: scripts/setup.sh)" >&2; exit 1; }
+[ -x /usr/bin/meshlab ] || { echo "make-prefix: /usr/bin/meshlab missing (install the meshlab package: scripts/setup.sh)" >&2; exit 1; }
+for b in meshlab meshlabserver; do  # MeshLab 2022.02 has no meshlabserver
+  [ -x "/usr/bin/$b" ] || continue
   cmp -s "/usr/bin/$b" "$prefix/bin/$b" || cp -f "/usr/bin/$b" "$prefix/bin/$b"
 done
 ln -sfn "$sys/libmeshlab-common.so" "$libdir/libmeshlab-common.so"

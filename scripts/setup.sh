@@ -20,7 +20,8 @@ PKGS=(meshlab build-essential cmake ninja-build ccache pkg-config dpkg-dev
       qtbase5-dev libqt5opengl5-dev libqt5xmlpatterns5-dev qtdeclarative5-dev libqt5svg5-dev
       libglew-dev libglu1-mesa-dev libeigen3-dev libsuitesparse-dev libopenblas0-pthread libopencv-dev nlohmann-json3-dev libcgal-dev libgmp-dev libmpfr-dev
       libgtest-dev libgmock-dev xvfb xauth x11-utils xdotool imagemagick time
-      clang libclang-rt-14-dev libomp-14-dev)
+      clang libclang-rt-14-dev libomp-14-dev
+      slurm-wlm munge parallel debootstrap)
 
 missing=()
 for p in "${PKGS[@]}"; do

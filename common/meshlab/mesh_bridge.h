@@ -1,7 +1,7 @@
-// ReliefKit — moving data between MeshLab's CMeshO and the cores (MeshLab 2020.09 types).
+// ReliefKit — moving data between MeshLab's CMeshO and the cores (MeshLab 2020.09 or 2022.02).
 #pragma once
 
-#include <common/meshmodel.h>
+#include <meshlab_api.h>  // the MeshLab configured (RELIEFKIT_MESHLAB_API)
 
 #include <QString>
 #include <functional>

@@ -63,7 +63,7 @@ int read_int(FilterCall& call, const char* name, const QString& label, int lo, i
 
 int read_enum(FilterCall& call, const char* name, const QString& label, int count) {
   const RichParameter& p = parameter(call, name, label);
-  if (!p.value().isEnum() && !p.value().isInt())
+  if (!p.value().isInt())  // an enum is an int (MeshLab 2020.09: EnumValue derives IntValue)
     throw InputError(qUtf8Printable(QString("%1 must be a choice index (the script gives another type).").arg(where(name, label))));
   const int v = p.value().getInt();
   if (v < 0 || v >= count)

@@ -1,4 +1,4 @@
-// ReliefKit — reading and checking filter parameters (MeshLab 2020.09 types).
+// ReliefKit — reading and checking filter parameters (MeshLab's types, 2020.09 or 2022.02).
 //
 // Every ReliefKit filter declares and reads its parameters through these helpers, so each value
 // is checked the same way before anything touches the mesh: a number must be finite and in its
@@ -7,10 +7,8 @@
 // dialog shows and the name scripts use) and the accepted range.
 #pragma once
 
-#include <common/interfaces.h>
-
 #include "reliefkit/base/scale.h"
-#include "rk_plugin.h"
+#include <rk_plugin.h>  // the adapter of the MeshLab configured (RELIEFKIT_MESHLAB_API)
 
 namespace reliefkit::ml {
 

@@ -1,49 +1,20 @@
-// ReliefKit — the thin MeshLab 2020.09 adapter shared by all ReliefKit plugins.
+// ReliefKit — the thin MeshLab 2020.09 adapter shared by all ReliefKit plugins (MeshFilterInterface).
 //
 // A plugin is one table of FilterSpec entries (name, help, menu class, parameters, apply);
 // this base class answers every MeshFilterInterface call from the table, so adding a filter
-// touches one place. Everything that depends on MeshLab's plugin interface lives in this folder:
-// a later MeshLab release line (FilterPlugin, new applyFilter signature, exceptions) needs a new
-// version of these two files only.
+// touches one place. Everything that depends on MeshLab's plugin interface lives in these two
+// files; common/meshlab2022/rk_plugin.h is the same for MeshLab 2022.02's FilterPlugin (chosen at
+// configure time: RELIEFKIT_MESHLAB_API).
 #pragma once
 
-#include <common/interfaces.h>
+#include "meshlab_api.h"
 
 #include <functional>
 #include <vector>
 
+#include "filter_spec.h"
+
 namespace reliefkit::ml {
-
-/// What an apply function gets. Errors are reported by throwing (reliefkit::InputError or any
-/// std::exception); the adapter turns them into MeshLab's error message and a log line.
-struct FilterCall {
-  MeshDocument& doc;
-  MeshModel* current;  // the current layer; null only for a filter that needs none (needs_mesh false)
-  MeshModel& mesh() const { return *current; }
-  const RichParameterList& params;
-  vcg::CallBackPos* progress;
-  std::function<void(const QString&)> log;
-};
-
-struct FilterSpec {
-  int id;
-  QString name;  // exact name: users' .mlx scripts call filters by it
-  QString info;  // HTML help shown in the filter dialog
-  MeshFilterInterface::FilterClass menu;
-  int preconditions;   // MeshModel::MM_* the filter needs
-  int postconditions;  // MeshModel::MM_* the filter changes
-  std::function<void(MeshModel&, RichParameterList&)> parameters;
-  std::function<void(FilterCall&)> apply;
-  /// The filter adds layers (curves, a smoothed copy). MeshLab 2020.09 cannot take back the
-  /// layers a Preview adds, so such filters are not previewable.
-  bool adds_layers = false;
-  /// False for a filter that makes its layers from other input (a drawing): it runs in an empty
-  /// document too (MeshLab's Create menu), with `current` null.
-  bool needs_mesh = true;
-};
-
-/// A log line as MeshLab's log window shows it unchanged (no character read as markup).
-QString log_text(QString line);
 
 class ReliefKitPlugin : public QObject, public MeshFilterInterface {
  public:
@@ -66,3 +37,8 @@ class ReliefKitPlugin : public QObject, public MeshFilterInterface {
 };
 
 }  // namespace reliefkit::ml
+
+/// In each plugin class, after Q_OBJECT: what makes it a filter plugin of this MeshLab.
+#define RELIEFKIT_FILTER_PLUGIN                           \
+  MESHLAB_PLUGIN_IID_EXPORTER(MESH_FILTER_INTERFACE_IID) \
+  Q_INTERFACES(MeshFilterInterface)

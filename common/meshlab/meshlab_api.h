@@ -1,0 +1,13 @@
+// ReliefKit — MeshLab 2020.09's headers, for the adapter's other files (mesh bridge, parameters):
+// the mesh and document types, the parameter list, and the plugin interface under one name. Its
+// twin for MeshLab 2022.02 is common/meshlab2022/meshlab_api.h (RELIEFKIT_MESHLAB_API chooses).
+#pragma once
+
+#include <common/interfaces.h>
+#include <common/meshmodel.h>
+
+namespace reliefkit::ml {
+/// The plugin interface of this MeshLab (its FilterClass values name the filters' menus).
+using FilterInterface = MeshFilterInterface;
+using RichDirection = ::RichPoint3f;  // a direction parameter (MeshLab 2022.02: RichDirection)
+}  // namespace reliefkit::ml

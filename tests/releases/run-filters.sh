@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Every ReliefKit filter at its defaults through one reliefkit-batch, each over the inputs it takes
+# (tests/releases/compare-releases.sh runs this once per MeshLab release, on the same inputs).
+#   run-filters.sh BATCH INPUTS OUTPUT
+set -uo pipefail
+batch="$1"; inputs="$2"; out="$3"
+rm -rf "$out"; mkdir -p "$out"
+export OMP_WAIT_POLICY=PASSIVE
+status=0
+run() {  # slug, input folder, extensions, filter, extra arguments
+  local slug="$1" folder="$2" ext="$3" filter="$4"; shift 4
+  "$batch" --filter "$filter" --extensions "$ext" "$@" "$inputs/$folder" "$out/$slug" > "$out/$slug.log" 2>&1
+  local rc=$?
+  [ $rc -le 1 ] || { echo "reliefkit-batch failed ($rc) for $filter:"; tail -5 "$out/$slug.log"; status=1; }
+}
+for f in "Compute Curvature Tensor and Derivatives" "Demarcating Curves" "Curvature Shading" "Relief Edges" \
+         "Estimate Base Normals" "Ridges and Valleys" "Compute Optimal Scale" "Optimally Smoothed Surface" \
+         "Multi-scale Ridges and Valleys" "Multi-scale Relief Edges" "Prominent Field" "Prominent Enhancement" \
+         "Prominent Coloring"; do
+  run "$(echo "$f" | tr ' A-Z' '_a-z')" mesh ply "$f"
+done
+run line_drawing_to_curves drawing png "Line Drawing to Curves" --param "drawing={input}"
+run relief_from_line_drawing drawing png "Relief from Line Drawing" --param "drawing={input}"
+run base_from_drawing_silhouette figure png "Base from Drawing Silhouette" --param "drawing={input}"
+run vessel_from_profile_drawing profile png "Vessel from Profile Drawing" --param "drawing={input}"
+exit $status
