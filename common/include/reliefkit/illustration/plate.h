@@ -1,0 +1,74 @@
+// ReliefKit — the illustrator's plate of a scan: an orthographic view at a stated scale, the
+// curve layers as black vector lines (hidden parts removed by depth), the surface's shading as a
+// grey raster under them, a scale bar. The page is laid out here in millimetres; plate_svg()
+// writes it as SVG (the plugin adapter also draws it to PDF with Qt).
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "reliefkit/base/mesh.h"
+
+namespace reliefkit {
+
+/// Looking along `direction` with `up` up the page (both in the mesh's frame; up is made
+/// perpendicular to the direction).
+struct PlateView {
+  Vec3 direction{0, 0, -1};
+  Vec3 up{0, 1, 0};
+};
+
+/// The view facing a relief: along its axis of least extent (the normal of a coin, a plaque, a
+/// sherd), looking at the side the vertex normals face most; up along the axis of largest extent.
+PlateView facing_view(const TriMesh& mesh, const std::vector<Vec3>& normals);
+
+/// Curves to draw: points and segments (pairs of point indices), one stroke width for the layer.
+struct PlateCurves {
+  std::string name;
+  std::vector<Vec3> points;
+  std::vector<std::array<int, 2>> segments;
+  double width_mm = 0.35;
+};
+
+struct PlateParams {
+  double unit_mm = 1;         // one unit of the mesh in millimetres (its scanner's unit)
+  double ratio = 1;           // drawn size / real size: 1 for 1:1, 2 for 2:1, 0.5 for 1:2
+  double dpi = 300;           // the shading raster's resolution on the page
+  double margin_mm = 10;      // around the drawing; the scale bar sits in the bottom margin
+  double page_width_mm = 0;   // 0: the drawing and its margins; else a fixed page (A4: 210 x 297)
+  double page_height_mm = 0;
+  double hidden_px = 1.5;     // a curve point more than this behind the surface (in raster pixels) is hidden
+  double simplify_px = 0.25;  // polylines simplified within this many raster pixels
+};
+
+/// A visible piece of curve on the page (millimetres, y down as in SVG and PDF).
+struct PlatePath {
+  std::vector<Vec2> points;
+  double width_mm = 0.35;
+  std::string layer;
+};
+
+struct Plate {
+  double width_mm = 0, height_mm = 0;
+  Vec2 drawing_origin_mm{0, 0};  // top-left of the drawing (and of the shading raster)
+  Vec2 drawing_size_mm{0, 0};
+  cv::Mat shading;               // 8-bit grey at params.dpi, 255 where there is no surface (paper)
+  std::vector<PlatePath> paths;
+  Vec2 bar_start_mm{0, 0};       // the scale bar: a line of bar_length_mm with its label below
+  double bar_length_mm = 0;
+  std::string bar_label;         // "10 mm"
+  std::string scale_label;       // "1:1"
+  long visible_segments = 0, hidden_segments = 0;
+};
+
+/// The plate of `mesh` shaded with `grey` (per vertex, 0 black .. 1 white; empty: Lambertian from
+/// the view) and the curve layers. Throws InputError for a view with no area, no curve to draw, a
+/// page too small for the drawing at this scale, or parameters out of range.
+Plate make_plate(const TriMesh& mesh, const std::vector<double>& grey, const std::vector<PlateCurves>& layers,
+                 const PlateView& view, const PlateParams& params);
+
+/// The plate as an SVG document (millimetre units; the shading embedded as a PNG).
+std::string plate_svg(const Plate& plate);
+
+}  // namespace reliefkit

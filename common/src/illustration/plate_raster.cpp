@@ -1,0 +1,109 @@
+// ReliefKit — the plate's frame and depth raster. See plate_raster.h.
+#include "plate_raster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace reliefkit {
+namespace {
+
+constexpr double kMostPixels = 60e6;  // about A3 at 600 dpi
+
+// Per-vertex area-weighted normals (for the Lambertian shading).
+std::vector<Vec3> vertex_normals(const TriMesh& mesh) {
+  std::vector<Vec3> n(mesh.vertices.size(), Vec3::Zero());
+  for (const auto& f : mesh.faces) {
+    const Vec3 fn = (mesh.vertices[size_t(f[1])] - mesh.vertices[size_t(f[0])]).cross(mesh.vertices[size_t(f[2])] - mesh.vertices[size_t(f[0])]);
+    for (int v : f) n[size_t(v)] += fn;
+  }
+  for (auto& v : n) v = v.norm() > 0 ? Vec3(v.normalized()) : Vec3::Zero();
+  return n;
+}
+
+// Grey per vertex from a light over the viewer's left shoulder (the illustrator's convention:
+// light from the top left), two-sided so that a surface seen from behind is not black.
+std::vector<double> lambertian(const TriMesh& mesh, const PageFrame& frame) {
+  const Vec3 light = (-frame.ahead + 0.5 * frame.up - 0.5 * frame.right).normalized();
+  const std::vector<Vec3> n = vertex_normals(mesh);
+  std::vector<double> g(n.size());
+  for (size_t i = 0; i < n.size(); ++i) g[i] = 0.25 + 0.75 * std::abs(n[i].dot(light));
+  return g;
+}
+
+struct ScreenVertex {
+  double x, y, z, grey;
+};
+
+// One triangle into the raster: nearest depth wins, its grey with it.
+void draw_triangle(const ScreenVertex (&t)[3], cv::Mat& depth, cv::Mat& grey) {
+  const double area = (t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[2].x - t[0].x) * (t[1].y - t[0].y);
+  if (std::abs(area) < 1e-12) return;
+  const int x0 = std::max(0, int(std::floor(std::min({t[0].x, t[1].x, t[2].x})))),
+            x1 = std::min(depth.cols - 1, int(std::ceil(std::max({t[0].x, t[1].x, t[2].x})))),
+            y0 = std::max(0, int(std::floor(std::min({t[0].y, t[1].y, t[2].y})))),
+            y1 = std::min(depth.rows - 1, int(std::ceil(std::max({t[0].y, t[1].y, t[2].y}))));
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
+      const double px = x + 0.5, py = y + 0.5;
+      double w[3];
+      for (int k = 0; k < 3; ++k) {
+        const ScreenVertex &a = t[(k + 1) % 3], &b = t[(k + 2) % 3];
+        w[k] = ((b.x - a.x) * (py - a.y) - (px - a.x) * (b.y - a.y)) / area;
+      }
+      if (w[0] < -1e-9 || w[1] < -1e-9 || w[2] < -1e-9) continue;
+      const double z = w[0] * t[0].z + w[1] * t[1].z + w[2] * t[2].z;
+      double& d = depth.at<double>(y, x);
+      if (z >= d) continue;
+      d = z;
+      const double g = w[0] * t[0].grey + w[1] * t[1].grey + w[2] * t[2].grey;
+      grey.at<uchar>(y, x) = cv::saturate_cast<uchar>(255 * std::clamp(g, 0.0, 1.0));
+    }
+}
+}  // namespace
+
+PageFrame page_frame(const TriMesh& mesh, const PlateView& view, const PlateParams& params) {
+  PageFrame f;
+  if (!view.direction.allFinite() || view.direction.norm() < 1e-12) throw InputError("The view direction must not be zero.");
+  f.ahead = view.direction.normalized();
+  Vec3 up = view.up - view.up.dot(f.ahead) * f.ahead;
+  if (up.norm() < 1e-9) up = f.ahead.unitOrthogonal();  // up along the view: any perpendicular
+  f.up = up.normalized();
+  f.right = f.ahead.cross(f.up);
+  double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
+  for (const auto& p : mesh.vertices) {
+    lo_x = std::min(lo_x, p.dot(f.right)), hi_x = std::max(hi_x, p.dot(f.right));
+    lo_y = std::min(lo_y, p.dot(f.up)), hi_y = std::max(hi_y, p.dot(f.up));
+  }
+  f.left = lo_x;
+  f.top = hi_y;
+  f.mm_per_unit = params.unit_mm * params.ratio;
+  f.drawing_mm = Vec2((hi_x - lo_x) * f.mm_per_unit, (hi_y - lo_y) * f.mm_per_unit);
+  if (!(f.drawing_mm.x() > 1e-3 && f.drawing_mm.y() > 1e-3))
+    throw InputError("Seen from this view the mesh has no area (it is seen edge-on, or it is a line or a point): choose "
+                     "another view direction.");
+  return f;
+}
+
+DepthRaster rasterize(const TriMesh& mesh, const std::vector<double>& grey, const PageFrame& frame, const PlateParams& params) {
+  DepthRaster r;
+  r.px_per_mm = params.dpi / 25.4;
+  const double w = std::ceil(frame.drawing_mm.x() * r.px_per_mm), h = std::ceil(frame.drawing_mm.y() * r.px_per_mm);
+  if (w * h > kMostPixels) throw InputError("The shading would be over 60 million pixels at this size: lower its dpi or the scale.");
+  r.depth = cv::Mat(int(std::max(1.0, h)), int(std::max(1.0, w)), CV_64F, cv::Scalar(std::numeric_limits<double>::infinity()));
+  r.grey = cv::Mat(r.depth.size(), CV_8U, cv::Scalar(255));
+  r.hidden_depth = params.hidden_px / r.px_per_mm / frame.mm_per_unit;
+  const std::vector<double> g = grey.empty() ? lambertian(mesh, frame) : grey;
+  for (const auto& f : mesh.faces) {
+    ScreenVertex t[3];
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = mesh.vertices[size_t(f[k])];
+      const Vec2 mm = frame.to_mm(p);
+      t[k] = {mm.x() * r.px_per_mm, mm.y() * r.px_per_mm, frame.depth(p), g[size_t(f[k])]};
+    }
+    draw_triangle(t, r.depth, r.grey);
+  }
+  return r;
+}
+
+}  // namespace reliefkit

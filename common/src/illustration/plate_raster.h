@@ -1,0 +1,41 @@
+// ReliefKit — the plate's view frame, its depth raster, and its visible curves (internal to
+// common/src/illustration; see reliefkit/illustration/plate.h).
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include "reliefkit/illustration/plate.h"
+
+namespace reliefkit {
+
+/// The orthographic view on the page: a mesh point's place in millimetres from the drawing's
+/// top-left (y down) and its depth along the view (larger: farther).
+struct PageFrame {
+  Vec3 right, up, ahead;
+  double left = 0, top = 0;  // the projection's extreme coordinates (mesh units)
+  double mm_per_unit = 1;
+  Vec2 drawing_mm{0, 0};
+  Vec2 to_mm(const Vec3& p) const { return Vec2((p.dot(right) - left) * mm_per_unit, (top - p.dot(up)) * mm_per_unit); }
+  double depth(const Vec3& p) const { return p.dot(ahead); }
+};
+
+/// Throws InputError when the view sees the mesh as a line or a point (no area).
+PageFrame page_frame(const TriMesh& mesh, const PlateView& view, const PlateParams& params);
+
+/// The surface seen from the view at params.dpi: nearest depth per pixel (+inf where there is no
+/// surface) and the grey of the surface there (per-vertex grey interpolated, or Lambertian).
+struct DepthRaster {
+  cv::Mat depth;  // CV_64F
+  cv::Mat grey;   // CV_8U, 255 off the surface
+  double px_per_mm = 1;
+  double hidden_depth = 0;  // mesh units behind the surface beyond which a curve point is hidden
+};
+DepthRaster rasterize(const TriMesh& mesh, const std::vector<double>& grey, const PageFrame& frame, const PlateParams& params);
+
+/// The layer's curves, chained into polylines, split where they go behind the surface,
+/// simplified, appended to plate.paths (millimetres from the drawing's top-left); the segments
+/// counted visible or hidden.
+void add_visible_paths(Plate& plate, const PlateCurves& layer, const PageFrame& frame, const DepthRaster& raster,
+                       const PlateParams& params);
+
+}  // namespace reliefkit

@@ -1,0 +1,165 @@
+// The illustrator's plate (reliefkit/illustration/plate.h): a flat ground with a raised square
+// block, curves on the block's top (visible), under the ground (hidden), on the ground behind the
+// block seen obliquely (hidden by the block) and in front of it (visible); the page, the scale
+// bar, the SVG rendered by a real renderer (rsvg-convert), bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+#include "reliefkit/illustration/plate.h"
+#include "shapes.h"
+
+using namespace reliefkit;
+
+namespace {
+// Ground z = 0 on [-10, 10]^2 (0.2 apart), the block z = 2 on |x|, |y| < 3 (steep sides).
+TriMesh block_relief() {
+  return rktest::height_field([](double x, double y) { return std::abs(x) < 3 && std::abs(y) < 3 ? 2.0 : 0.0; }, 10, 100);
+}
+
+// A closed square of half-side h at height z, centred at (cx, cy), as points and segments.
+PlateCurves square(const std::string& name, double cx, double cy, double h, double z) {
+  PlateCurves c;
+  c.name = name;
+  const double corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  for (int k = 0; k < 4; ++k)
+    for (int s = 0; s < 10; ++s) {
+      const double t = s / 10.0;
+      const double* a = corner[k];
+      const double* b = corner[(k + 1) % 4];
+      c.points.push_back(Vec3(cx + h * (a[0] + t * (b[0] - a[0])), cy + h * (a[1] + t * (b[1] - a[1])), z));
+    }
+  for (int k = 0; k < 40; ++k) c.segments.push_back({k, (k + 1) % 40});
+  return c;
+}
+
+// Distance (mm) from page point q to the outline of the square (centre c, half-side h) drawn from
+// above at `ratio` mm per unit.
+double to_square_mm(const Plate& p, const Vec2& q, double ratio, const Vec2& c, double h) {
+  const double x = (q.x() - p.drawing_origin_mm.x()) / ratio - 10 - c.x(), y = 10 - (q.y() - p.drawing_origin_mm.y()) / ratio - c.y();
+  const double dx = std::abs(x) - h, dy = std::abs(y) - h;
+  const double outside = std::hypot(std::max(dx, 0.0), std::max(dy, 0.0));
+  return ratio * (outside > 0 ? outside : -std::max(dx, dy));
+}
+}  // namespace
+
+TEST(Plate, SeenFromAboveTheTopCurveIsDrawnWhereItProjectsAndTheBuriedOneIsNot) {
+  PlateParams params;
+  params.ratio = 2;  // 2:1, the mesh in millimetres
+  // Off centre, so that a mirrored or shifted projection is caught.
+  const Plate p = make_plate(block_relief(), {}, {square("top", 1, -1.5, 1, 2), square("buried", 0, 0, 6, -1)},
+                             PlateView{Vec3(0, 0, -1), Vec3(0, 1, 0)}, params);
+  // The page: the 40 mm drawing, 10 mm margins, 12 mm for the scale bar.
+  EXPECT_NEAR(p.width_mm, 60, 1e-6);
+  EXPECT_NEAR(p.height_mm, 72, 1e-6);
+  EXPECT_NEAR(p.drawing_size_mm.x(), 40, 1e-6);
+  // Every point drawn within a pixel (300 dpi) of the top square's projection; nothing of the buried one.
+  const double px = 25.4 / 300;
+  double worst = 0;
+  for (const auto& path : p.paths) {
+    EXPECT_EQ(path.layer, "top");
+    for (const auto& q : path.points) worst = std::max(worst, std::abs(to_square_mm(p, q, 2, Vec2(1, -1.5), 1)));
+  }
+  std::printf("%zu paths, worst %.4f mm (a pixel: %.4f mm); %ld visible, %ld hidden segments\n", p.paths.size(), worst, px,
+              p.visible_segments, p.hidden_segments);
+  EXPECT_FALSE(p.paths.empty());
+  EXPECT_LT(worst, px);
+  EXPECT_EQ(p.visible_segments, 40);
+  EXPECT_EQ(p.hidden_segments, 40);
+  // The scale bar: a quarter of 20 mm of drawing is 5 mm real, 10 mm on the page at 2:1.
+  EXPECT_EQ(p.bar_label, "5 mm");
+  EXPECT_EQ(p.scale_label, "2:1");
+  EXPECT_NEAR(p.bar_length_mm, 10, 1e-9);
+}
+
+TEST(Plate, SeenObliquelyTheBlockHidesTheGroundBehindIt) {
+  // Looking down at 45 degrees towards +x: ground behind the block (x = 4..5) is hidden by it,
+  // ground in front of it (x = -5) is seen.
+  PlateCurves behind, front;
+  behind.name = "behind", front.name = "front";
+  for (int k = 0; k <= 20; ++k) {
+    behind.points.push_back(Vec3(4, -2 + 0.2 * k, 0.001));
+    front.points.push_back(Vec3(-5, -2 + 0.2 * k, 0.001));
+  }
+  for (int k = 0; k < 20; ++k) behind.segments.push_back({k, k + 1}), front.segments.push_back({k, k + 1});
+  const Plate p = make_plate(block_relief(), {}, {behind, front}, PlateView{Vec3(1, 0, -1), Vec3(0, 0, 1)}, PlateParams{});
+  int behind_paths = 0, front_paths = 0;
+  for (const auto& path : p.paths) (path.layer == "behind" ? behind_paths : front_paths) += 1;
+  EXPECT_EQ(behind_paths, 0);
+  EXPECT_EQ(front_paths, 1);
+  EXPECT_EQ(p.hidden_segments, 20);
+}
+
+TEST(Plate, TheSvgRendersWithTheCurvesAndTheScaleBarWhereTheyBelong) {
+  PlateParams params;
+  params.ratio = 2;
+  params.dpi = 150;
+  const Plate p = make_plate(block_relief(), {}, {square("top", 1, -1.5, 1, 2), square("buried", 0, 0, 6, -1)},
+                             PlateView{Vec3(0, 0, -1), Vec3(0, 1, 0)}, params);
+  const auto dir = std::filesystem::temp_directory_path() / "rk_plate_svg";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "plate.svg") << plate_svg(p);
+  const std::string cmd = "rsvg-convert --dpi-x 300 --dpi-y 300 -o '" + (dir / "plate.png").string() + "' '" + (dir / "plate.svg").string() + "'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << "rsvg-convert (Debian package librsvg2-bin) must render the plate";
+  const cv::Mat img = cv::imread((dir / "plate.png").string(), cv::IMREAD_GRAYSCALE);
+  ASSERT_FALSE(img.empty());
+  const double ppmm = 300 / 25.4;
+  // The page size: 60 x 72 mm at 300 dpi.
+  EXPECT_NEAR(img.cols, 60 * ppmm, 1.5);
+  EXPECT_NEAR(img.rows, 72 * ppmm, 1.5);
+  // Black along the top square's outline (its lines 0.35 mm wide), not along the buried one's.
+  auto dark_at = [&](double x_mm, double y_mm) {
+    int darkest = 255;
+    for (int dy = -2; dy <= 2; ++dy)
+      for (int dx = -2; dx <= 2; ++dx)
+        darkest = std::min(darkest, int(img.at<uchar>(int(y_mm * ppmm) + dy, int(x_mm * ppmm) + dx)));
+    return darkest < 60;
+  };
+  const Vec2 o = p.drawing_origin_mm;
+  int top_hits = 0, buried_hits = 0;
+  for (int k = 0; k < 20; ++k) {
+    const double t = -2.0 + 0.2 * k;
+    top_hits += dark_at(o.x() + (10 + 1 + 0.4 * t) * 2, o.y() + (10 - (-1.5 + 1)) * 2);  // the top square's upper side
+    buried_hits += dark_at(o.x() + (10 + 1.5 * t) * 2, o.y() + (10 - 6) * 2);            // where the buried one would be
+  }
+  EXPECT_GE(top_hits, 19);
+  EXPECT_EQ(buried_hits, 0);
+  // The scale bar's line: its dark run along its row, 10 mm within 1 %.
+  const int row = int(p.bar_start_mm.y() * ppmm);
+  int first = -1, last = -1;
+  for (int x = 0; x < img.cols; ++x)
+    for (int dy = -1; dy <= 1; ++dy)
+      if (img.at<uchar>(row + dy, x) < 128) {
+        if (first < 0) first = x;
+        last = x;
+      }
+  const double bar_mm = (last - first + 1) / ppmm - 0.3;  // less the line's width (round caps: none; end ticks 0.3 mm)
+  std::printf("scale bar rendered %.3f mm (10 mm)\n", bar_mm);
+  EXPECT_NEAR(bar_mm, 10, 0.1);
+}
+
+TEST(Plate, BadInputIsRefusedWithAReason) {
+  const TriMesh relief = block_relief();
+  const PlateView above{Vec3(0, 0, -1), Vec3(0, 1, 0)};
+  EXPECT_THROW(make_plate(relief, {}, {}, above, PlateParams{}), InputError);                      // no curve layer
+  EXPECT_THROW(make_plate(relief, {}, {PlateCurves{}}, above, PlateParams{}), InputError);         // an empty one
+  const TriMesh flat = rktest::height_field([](double, double) { return 0.0; }, 10, 20);
+  EXPECT_THROW(make_plate(flat, {}, {square("s", 0, 0, 2, 0)}, PlateView{Vec3(1, 0, 0), Vec3(0, 0, 1)}, PlateParams{}),
+               InputError);  // seen edge-on: no area
+  PlateParams small_page;
+  small_page.page_width_mm = 30;
+  small_page.page_height_mm = 30;
+  EXPECT_THROW(make_plate(relief, {}, {square("s", 0, 0, 2, 2)}, above, small_page), InputError);
+  PlateParams bad;
+  bad.ratio = 0;
+  EXPECT_THROW(make_plate(relief, {}, {square("s", 0, 0, 2, 2)}, above, bad), InputError);
+  try {
+    make_plate(relief, {}, {}, above, PlateParams{});
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("choose a curve layer"), std::string::npos);
+  }
+}
