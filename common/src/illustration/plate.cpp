@@ -72,10 +72,12 @@ PlateView facing_view(const TriMesh& mesh, const std::vector<Vec3>& normals) {
   const Eigen::SelfAdjointEigenSolver<Mat3> eig(cov);  // eigenvalues ascending
   PlateView view;
   view.direction = eig.eigenvectors().col(0);
-  view.up = eig.eigenvectors().col(2);
   double facing = 0;
   for (const auto& n : normals) facing += n.dot(view.direction);
   if (facing > 0) view.direction = -view.direction;  // look at the side the normals face
+  // Up as the scan was made: its y axis (MeshLab's default view), or its z axis when the view runs
+  // along y — not the axis of largest extent, which on a round coin is any diameter.
+  view.up = std::abs(view.direction.y()) < 0.9 ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
   return view;
 }
 

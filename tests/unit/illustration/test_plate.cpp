@@ -163,3 +163,14 @@ TEST(Plate, BadInputIsRefusedWithAReason) {
     EXPECT_NE(std::string(e.what()).find("choose a curve layer"), std::string::npos);
   }
 }
+
+TEST(Plate, TheDefaultViewFacesTheRelief) {
+  // A relief in the xy plane with its normals up (+z), and the same turned over: seen from the
+  // side its normals face, along its least extent, the scan's y axis up.
+  const TriMesh relief = block_relief();
+  std::vector<Vec3> up_normals(relief.vertices.size(), Vec3(0, 0, 1)), down_normals(relief.vertices.size(), Vec3(0, 0, -1));
+  const PlateView v = facing_view(relief, up_normals);
+  EXPECT_NEAR(v.direction.z(), -1, 1e-6);
+  EXPECT_NEAR(v.up.y(), 1, 1e-12);
+  EXPECT_NEAR(facing_view(relief, down_normals).direction.z(), 1, 1e-6);
+}
