@@ -63,7 +63,8 @@ void set_from_text(RichParameterList& list, const RichParameter& p, const QStrin
 /// "1,0,0", "#ff0000"): the records say with what values each filter ran.
 QString parameter_text(const RichParameter& p);
 
-/// Replaces "{input}" in the text and file parameters by `path`.
-void substitute_input(RichParameterList& list, const QString& path);
+/// Replaces "{input}" in the text and file parameters by the input file's path and "{output}" by
+/// the folder of its outputs.
+void substitute_input(RichParameterList& list, const QString& input, const QString& output);
 
 }  // namespace reliefkit::batch

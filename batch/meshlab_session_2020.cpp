@@ -97,6 +97,5 @@ bool MeshLabSession::apply(const QString& name, MeshDocument& doc, const RichPar
 
 QStringList MeshLabSession::filter_names() const { return impl_->plugins.actionFilterMap.keys(); }
 
-std::vector<MeshModel*> layers(MeshDocument& doc) { return {doc.meshList.begin(), doc.meshList.end()}; }
 
 }  // namespace reliefkit::batch

@@ -112,10 +112,5 @@ QStringList MeshLabSession::filter_names() const {
   return names;
 }
 
-std::vector<MeshModel*> layers(MeshDocument& doc) {
-  std::vector<MeshModel*> all;
-  for (MeshModel& m : doc.meshIterator()) all.push_back(&m);
-  return all;
-}
 
 }  // namespace reliefkit::batch

@@ -31,6 +31,8 @@ void start_application() {
   static QApplication app(argc, argv);
 }
 
+std::vector<MeshModel*> layers(MeshDocument& doc) { return ml::document_layers(doc); }
+
 int export_mask(const MeshModel& mm) {
   int mask = vcg::tri::io::Mask::IOM_VERTNORMAL;
   if (mm.hasDataMask(MeshModel::MM_VERTQUALITY)) mask |= vcg::tri::io::Mask::IOM_VERTQUALITY;
@@ -112,13 +114,14 @@ QString parameter_text(const RichParameter& p) {
   return "(" + p.name() + ")";
 }
 
-void substitute_input(RichParameterList& list, const QString& path) {
+void substitute_input(RichParameterList& list, const QString& input, const QString& output) {
+  auto filled = [&](QString text) { return text.replace("{input}", input).replace("{output}", output); };
   for (RichParameter& p : list) {
-    if (p.value().isString() && p.value().getString().contains("{input}"))
-      list.setValue(p.name(), StringValue(QString(p.value().getString()).replace("{input}", path)));
+    if (p.value().isString() && p.value().getString().contains('{'))
+      list.setValue(p.name(), StringValue(filled(p.value().getString())));
 #if RELIEFKIT_MESHLAB_API == 2020
-    if (p.value().isFileName() && p.value().getFileName().contains("{input}"))
-      list.setValue(p.name(), FileValue(QString(p.value().getFileName()).replace("{input}", path)));
+    if (p.value().isFileName() && p.value().getFileName().contains('{'))
+      list.setValue(p.name(), FileValue(filled(p.value().getFileName())));
 #endif
   }
 }

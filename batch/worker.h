@@ -13,7 +13,8 @@ namespace reliefkit::batch {
 
 /// What to apply: an .mlx filter script, or one filter by its exact name with name=value
 /// parameters (the rest at their defaults). In a parameter's text value "{input}" stands for the
-/// file's path (the drawing filters read their input from a parameter).
+/// file's path (the drawing filters read their input from a parameter) and "{output}" for the
+/// folder of its outputs (a plate: --param "file={output}/plate.svg").
 struct Recipe {
   std::string script;
   std::string filter;

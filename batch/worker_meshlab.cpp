@@ -49,7 +49,7 @@ std::vector<Step> steps_of(const Recipe& recipe) {
 }
 
 // The parameters of one step: the filter's defaults for this document, the script's values, the
-// command line's name=value, "{input}" replaced by the file's path.
+// command line's name=value, "{input}" replaced by the file's path and "{output}" by its outputs' folder.
 RichParameterList parameters_of(MeshLabSession& ml, MeshDocument& doc, const Step& step, const WorkerRequest& request) {
   RichParameterList list = ml.default_parameters(step.filter, doc);
   for (RichParameter& p : list)
@@ -60,7 +60,9 @@ RichParameterList parameters_of(MeshLabSession& ml, MeshDocument& doc, const Ste
       if (!list.hasParameter(n)) throw std::runtime_error("the filter " + step.filter.toStdString() + " has no parameter " + name);
       set_from_text(list, list.getParameterByName(n), QString::fromStdString(text));
     }
-  substitute_input(list, QFileInfo(QString::fromStdString(request.file)).absoluteFilePath());
+  const fs::path outputs = fs::path(request.output) / fs::path(request.relative).replace_extension();
+  fs::create_directories(outputs);
+  substitute_input(list, QFileInfo(QString::fromStdString(request.file)).absoluteFilePath(), QString::fromStdString(outputs.string()));
   return list;
 }
 

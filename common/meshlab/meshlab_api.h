@@ -3,6 +3,8 @@
 // twin for MeshLab 2022.02 is common/meshlab2022/meshlab_api.h (RELIEFKIT_MESHLAB_API chooses).
 #pragma once
 
+#include <vector>
+
 #include <common/interfaces.h>
 #include <common/meshmodel.h>
 
@@ -10,4 +12,6 @@ namespace reliefkit::ml {
 /// The plugin interface of this MeshLab (its FilterClass values name the filters' menus).
 using FilterInterface = MeshFilterInterface;
 using RichDirection = ::RichPoint3f;  // a direction parameter (MeshLab 2022.02: RichDirection)
+/// The document's layers in order.
+inline std::vector<MeshModel*> document_layers(MeshDocument& doc) { return {doc.meshList.begin(), doc.meshList.end()}; }
 }  // namespace reliefkit::ml

@@ -3,6 +3,8 @@
 // twin of common/meshlab/meshlab_api.h).
 #pragma once
 
+#include <vector>
+
 #include <common/ml_document/mesh_document.h>
 #include <common/ml_document/mesh_model.h>
 #include <common/parameters/rich_parameter_list.h>
@@ -12,4 +14,10 @@ namespace reliefkit::ml {
 /// The plugin interface of this MeshLab (its FilterClass values name the filters' menus).
 using FilterInterface = FilterPlugin;
 using RichDirection = ::RichDirection;  // a direction parameter (MeshLab 2020.09: RichPoint3f)
+/// The document's layers in order.
+inline std::vector<MeshModel*> document_layers(MeshDocument& doc) {
+  std::vector<MeshModel*> all;
+  for (MeshModel& m : doc.meshIterator()) all.push_back(&m);
+  return all;
+}
 }  // namespace reliefkit::ml

@@ -60,6 +60,10 @@ std::string param_file(const std::string& name, const std::string& path) {
   return "<Param type=\"RichOpenFile\" name=\"" + name + "\" value=\"" + path + "\" exts_cardinality=\"0\"/>";
 }
 
+std::string param_save_file(const std::string& name, const std::string& path, const std::string& ext) {
+  return "<Param type=\"RichSaveFile\" name=\"" + name + "\" value=\"" + path + "\" ext=\"" + ext + "\"/>";
+}
+
 std::string param_point(const std::string& name, double x, double y, double z) {
   std::ostringstream s;
   s << "<Param type=\"RichPoint3f\" name=\"" << name << "\" x=\"" << x << "\" y=\"" << y << "\" z=\"" << z << "\"/>";

@@ -37,6 +37,8 @@ std::string param_bool(const std::string& name, bool value);
 std::string param_int(const std::string& name, int value);
 /// A file name parameter (RichOpenFile), as MeshLab writes it.
 std::string param_file(const std::string& name, const std::string& path);
+/// A file to write (RichSaveFile), as MeshLab writes it.
+std::string param_save_file(const std::string& name, const std::string& path, const std::string& ext);
 std::string param_point(const std::string& name, double x, double y, double z);
 void write_text(const std::string& path, const std::string& text);
 

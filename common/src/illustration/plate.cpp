@@ -44,13 +44,14 @@ void lay_out(Plate& plate, const Vec2& drawing_mm, const PlateParams& p) {
   plate.drawing_origin_mm = Vec2(0.5 * (plate.width_mm - drawing_mm.x()), 0.5 * (plate.height_mm - kBarRoom - drawing_mm.y()));
 }
 
-// A round real length (1, 2 or 5 times a power of ten, in mm) near a quarter of the drawing's width.
+// A round real length (1, 2 or 5 times a power of ten, in mm), the nearest (by ratio) to a quarter
+// of the drawing's width.
 void add_scale_bar(Plate& plate, const PlateParams& p) {
   const double target_real = 0.25 * plate.drawing_size_mm.x() / p.ratio;
   const double decade = std::pow(10.0, std::floor(std::log10(std::max(target_real, 1e-9))));
   double real = decade;
   for (double m : {2.0, 5.0, 10.0})
-    if (m * decade <= target_real) real = m * decade;
+    if (std::abs(std::log(m * decade / target_real)) < std::abs(std::log(real / target_real))) real = m * decade;
   plate.bar_length_mm = real * p.ratio;
   plate.bar_start_mm = plate.drawing_origin_mm + Vec2(0, plate.drawing_size_mm.y() + 4);
   char text[64];
@@ -62,7 +63,7 @@ void add_scale_bar(Plate& plate, const PlateParams& p) {
 }
 }  // namespace
 
-PlateView facing_view(const TriMesh& mesh, const std::vector<Vec3>& normals) {
+PlateView facing_view(const TriMesh& mesh) {
   if (mesh.vertices.empty()) throw InputError("The mesh is empty: there is nothing to draw.");
   Vec3 mean = Vec3::Zero();
   for (const auto& v : mesh.vertices) mean += v;
@@ -73,7 +74,10 @@ PlateView facing_view(const TriMesh& mesh, const std::vector<Vec3>& normals) {
   PlateView view;
   view.direction = eig.eigenvectors().col(0);
   double facing = 0;
-  for (const auto& n : normals) facing += n.dot(view.direction);
+  for (const auto& f : mesh.faces)
+    facing += (mesh.vertices[size_t(f[1])] - mesh.vertices[size_t(f[0])])
+                  .cross(mesh.vertices[size_t(f[2])] - mesh.vertices[size_t(f[0])])
+                  .dot(view.direction);
   if (facing > 0) view.direction = -view.direction;  // look at the side the normals face
   // Up as the scan was made: its y axis (MeshLab's default view), or its z axis when the view runs
   // along y — not the axis of largest extent, which on a round coin is any diameter.

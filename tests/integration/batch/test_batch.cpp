@@ -174,3 +174,19 @@ TEST(BatchTool, UsageErrors) {
   const BatchRun bad_param = batch({"--filter", "Demarcating Curves", "-p", "threshold=abc", scans + "/a", dir + "/out2"});
   EXPECT_NE(bad_param.output.find("\"abc\" is not a"), std::string::npos) << bad_param.output;
 }
+
+TEST(BatchTool, APlateForEveryScan) {
+  // "{output}" in a file parameter is the file's output folder: one plate (SVG and PDF) per scan.
+  const std::string dir = rktest::temp_dir("batch_plates");
+  const std::string scans = make_scans(dir), out = dir + "/out";
+  const std::string script = dir + "/plate.mlx";
+  std::ofstream(script) << "<!DOCTYPE FilterScript>\n<FilterScript>\n"
+                        << rktest::mlx_filter("Demarcating Curves", {rktest::param_float("threshold", 0.3)})
+                        << rktest::mlx_filter("Export Illustration Plate", {rktest::param_save_file("file", "{output}/plate.svg", "*.svg")})
+                        << "</FilterScript>\n";
+  const BatchRun r = batch({"--script", script, "--save", "none", scans + "/b", out});
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("Illustration plate: "), std::string::npos) << r.output;
+  EXPECT_NE(read_text(out + "/torus/plate.svg").find("<path"), std::string::npos);
+  EXPECT_TRUE(fs::exists(out + "/torus/plate.pdf"));
+}

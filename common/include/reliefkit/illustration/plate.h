@@ -20,9 +20,9 @@ struct PlateView {
 };
 
 /// The view facing a relief: along its axis of least extent (the normal of a coin, a plaque, a
-/// sherd), looking at the side the vertex normals face most; up along the scan's y axis (its z
+/// sherd), looking at the side its faces face most (their area-weighted normals); up along the scan's y axis (its z
 /// axis when the view runs along y), as MeshLab shows the scan by default.
-PlateView facing_view(const TriMesh& mesh, const std::vector<Vec3>& normals);
+PlateView facing_view(const TriMesh& mesh);
 
 /// Curves to draw: points and segments (pairs of point indices), one stroke width for the layer.
 struct PlateCurves {

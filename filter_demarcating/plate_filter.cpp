@@ -1,0 +1,167 @@
+// ReliefKit — "Export Illustration Plate" (see plate_filter.h): the layers gathered, the plate laid
+// out by the core, written as SVG (the core) and PDF (Qt's QPdfWriter, the same page drawn).
+#include "plate_filter.h"
+
+#include <QFile>
+#include <QFileInfo>
+#include <QPainter>
+#include <QPainterPath>
+#include <QPdfWriter>
+
+#include "mesh_bridge.h"
+#include "params.h"
+#include "reliefkit/illustration/plate.h"
+
+namespace reliefkit::ml {
+namespace {
+
+const char* kPlateInfo =
+    "Writes an <b>illustration plate</b> of the current mesh for a report: an orthographic view at the "
+    "scale you state (1:1, 2:1...), the curve layers as black vector lines (the parts behind the "
+    "surface removed), the surface's shading as grey under them, a scale bar in millimetres and the "
+    "scale. Output: an SVG file and, optionally, a PDF beside it (same name), at the page size asked "
+    "— ready for a report or for further work in Inkscape or Illustrator.<br><br>"
+    "<b>Curve layers</b>: every layer of curves (edges without faces: Demarcating Curves, Relief "
+    "Edges, Ridges and Valleys...), or the ones you name. <b>Shading</b>: the mesh's vertex colours "
+    "(run <i>Prominent Coloring</i> or <i>Curvature Shading</i> first: they read best), or light "
+    "from the top left. <b>Mesh unit</b>: how many millimetres one unit of the scan is (1 for scans "
+    "in mm).";
+
+const QStringList kViews{"Facing the relief (its least extent)", "From +Z (MeshLab's default view)", "Given direction"};
+const QStringList kShadings{"Automatic (vertex colours if any, else light)", "Vertex colours", "Light from the top left",
+                            "None (white paper)"};
+const QStringList kPages{"Fit the drawing", "A4 portrait", "A4 landscape"};
+
+void plate_parameters(const MeshModel&, RichParameterList& par) {
+  par.addParam(RichSaveFile("file", "", "*.svg", "Plate file (SVG)",
+                            "Where the plate goes (a relative name: beside the mesh's file). Empty: <mesh>-plate.svg "
+                            "beside the mesh's file."));
+  par.addParam(RichBool("pdf", true, "Also as PDF", "Writes the same page as a PDF beside the SVG."));
+  par.addParam(RichString("layers", "all", "Curve layers",
+                          "\"all\": every layer of curves; or the names of the layers to draw, separated by ';'."));
+  par.addParam(RichEnum("view", 0, kViews, "View", "Facing the relief: along its least extent, from the side its "
+                                                   "normals face (a coin, a plaque, a sherd's exterior)."));
+  par.addParam(RichDirection("direction", vcg::Point3f(0, 0, -1), "View direction (given)", "Looking along this direction."));
+  par.addParam(RichFloat("unit_mm", 1.0f, "Mesh unit (mm)", "Millimetres per unit of the mesh: 1 for a scan in mm, 10 for cm, 25.4 for inches."));
+  par.addParam(RichFloat("ratio", 1.0f, "Scale (drawn / real)", "1 for 1:1, 2 for 2:1, 0.5 for 1:2."));
+  par.addParam(RichEnum("shading", 0, kShadings, "Shading", "The grey under the lines."));
+  par.addParam(RichInt("dpi", 300, "Shading resolution (dpi)", "Of the shading raster on the page (the lines are vectors)."));
+  par.addParam(RichFloat("width", 0.35f, "Line width (mm)", "Of the curves (a technical pen's 0.35 mm by default)."));
+  par.addParam(RichEnum("page", 0, kPages, "Page", "Fit: the drawing with 10 mm margins. A4: the drawing centred on the page."));
+}
+
+// The layers of curves to draw: edges without faces, all or by name.
+std::vector<PlateCurves> curve_layers(FilterCall& call, const QString& wanted, double width_mm) {
+  QStringList names;
+  for (const QString& n : wanted.split(';')) if (!n.trimmed().isEmpty()) names << n.trimmed();
+  const bool all = names.isEmpty() || (names.size() == 1 && names[0].toLower() == "all");
+  std::vector<PlateCurves> layers;
+  for (MeshModel* m : document_layers(call.doc)) {
+    if (m->cm.fn > 0 || m->cm.en == 0 || !(all || names.contains(m->label()))) continue;
+    PlateCurves c{m->label().toStdString(), {}, {}, width_mm};
+    std::vector<int> index(size_t(m->cm.vert.size()), -1);
+    for (size_t i = 0; i < m->cm.vert.size(); ++i)
+      if (!m->cm.vert[i].IsD()) {
+        const auto& q = m->cm.vert[i].cP();
+        index[i] = int(c.points.size());
+        c.points.push_back(Vec3(q[0], q[1], q[2]));
+      }
+    for (const auto& e : m->cm.edge)
+      if (!e.IsD()) c.segments.push_back({index[size_t(vcg::tri::Index(m->cm, e.cV(0)))], index[size_t(vcg::tri::Index(m->cm, e.cV(1)))]});
+    layers.push_back(std::move(c));
+  }
+  if (layers.empty() && !all) throw InputError(qUtf8Printable("No curve layer is called " + names.join(" or ") + "."));
+  return layers;
+}
+
+// Grey per view vertex from the vertex colours (luminance), or empty (the core's Lambertian light).
+std::vector<double> shading_of(MeshModel& m, const View& view, int choice) {
+  const bool colours = m.hasDataMask(MeshModel::MM_VERTCOLOR);
+  if (choice == 1 && !colours) throw InputError("The mesh has no vertex colours: run Prominent Coloring or Curvature Shading first, or choose the light.");
+  if (choice == 3) return std::vector<double>(view.mesh.vertices.size(), 1.0);
+  if (choice == 2 || !colours) return {};
+  std::vector<double> grey(view.mesh.vertices.size());
+  for_each_vertex(view, [&](int i, const CVertexO* v) {
+    const auto& c = v->cC();
+    grey[size_t(i)] = (0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2]) / 255.0;
+  });
+  return grey;
+}
+
+void write_pdf(const Plate& plate, const QString& path);
+
+void apply_plate(FilterCall& call) {
+  View view = view_of(call.mesh(), call.log);
+  PlateParams p;
+  p.unit_mm = read_float(call, "unit_mm", "Mesh unit (mm)", 1e-9, 1e9);
+  p.ratio = read_float(call, "ratio", "Scale (drawn / real)", 1e-6, 1000);
+  p.dpi = read_int(call, "dpi", "Shading resolution (dpi)", 50, 2400);
+  const int page = read_enum(call, "page", "Page", kPages.size());
+  if (page > 0) p.page_width_mm = page == 1 ? 210 : 297, p.page_height_mm = page == 1 ? 297 : 210;
+  const std::vector<PlateCurves> layers =
+      curve_layers(call, call.params.getString("layers"), read_float(call, "width", "Line width (mm)", 0.01, 10));
+  PlateView v;
+  const int view_choice = read_enum(call, "view", "View", kViews.size());
+  if (view_choice == 0) v = facing_view(view.mesh);
+  if (view_choice == 2) {
+    const vcg::Point3f d = call.params.getPoint3m("direction");
+    v.direction = Vec3(d[0], d[1], d[2]);
+  }
+  const Plate plate = make_plate(view.mesh, shading_of(call.mesh(), view, read_enum(call, "shading", "Shading", kShadings.size())),
+                                 layers, v, p);
+  QString svg = call.params.getSaveFileName("file").trimmed();
+  if (svg.isEmpty()) svg = QFileInfo(call.mesh().fullName()).completeBaseName() + "-plate.svg";
+  if (QFileInfo(svg).isRelative()) svg = call.mesh().pathName() + "/" + svg;  // beside the mesh's file
+  QFile out(svg);
+  if (!out.open(QIODevice::WriteOnly) || out.write(QByteArray::fromStdString(plate_svg(plate))) < 0)
+    throw InputError(qUtf8Printable("The plate could not be written to " + svg + " (check the folder exists and is writable)."));
+  out.close();
+  QString pdf;
+  if (read_bool(call, "pdf", "Also as PDF")) write_pdf(plate, pdf = QFileInfo(svg).path() + "/" + QFileInfo(svg).completeBaseName() + ".pdf");
+  call.log(QString("Illustration plate: %1 x %2 mm at %3, %4 curve layer(s), %5 paths (%6 segments visible, %7 hidden); "
+                   "scale bar %8; written to %9%10.")
+               .arg(plate.width_mm, 0, 'f', 1).arg(plate.height_mm, 0, 'f', 1).arg(QString::fromStdString(plate.scale_label))
+               .arg(layers.size()).arg(plate.paths.size()).arg(thousands(plate.visible_segments)).arg(thousands(plate.hidden_segments))
+               .arg(QString::fromStdString(plate.bar_label)).arg(svg).arg(pdf.isEmpty() ? QString() : " and " + pdf));
+}
+
+// The same page through QPainter: millimetres mapped to the PDF's points.
+void write_pdf(const Plate& plate, const QString& path) {
+  QPdfWriter pdf(path);
+  pdf.setPageSize(QPageSize(QSizeF(plate.width_mm, plate.height_mm), QPageSize::Millimeter));
+  pdf.setPageMargins(QMarginsF(0, 0, 0, 0));
+  pdf.setResolution(1200);
+  QPainter painter;
+  if (!painter.begin(&pdf)) throw InputError(qUtf8Printable("The PDF could not be written to " + path + "."));
+  const double k = 1200 / 25.4;  // device pixels per millimetre
+  painter.scale(k, k);
+  const QImage shading(plate.shading.data, plate.shading.cols, plate.shading.rows, int(plate.shading.step), QImage::Format_Grayscale8);
+  painter.drawImage(QRectF(plate.drawing_origin_mm.x(), plate.drawing_origin_mm.y(), plate.drawing_size_mm.x(), plate.drawing_size_mm.y()), shading);
+  for (const auto& path_ : plate.paths) {
+    QPainterPath line(QPointF(path_.points[0].x(), path_.points[0].y()));
+    for (size_t i = 1; i < path_.points.size(); ++i) line.lineTo(path_.points[i].x(), path_.points[i].y());
+    painter.setPen(QPen(Qt::black, path_.width_mm, Qt::SolidLine, Qt::RoundCap, Qt::RoundJoin));
+    painter.drawPath(line);
+  }
+  const double x = plate.bar_start_mm.x(), y = plate.bar_start_mm.y(), len = plate.bar_length_mm;
+  painter.setPen(QPen(Qt::black, 0.3));
+  painter.drawLine(QPointF(x, y), QPointF(x + len, y));
+  painter.drawLine(QPointF(x, y - 1), QPointF(x, y + 1));
+  painter.drawLine(QPointF(x + len, y - 1), QPointF(x + len, y + 1));
+  QFont font("DejaVu Sans");
+  font.setPixelSize(3);  // 3 mm: the painter's unit is the millimetre
+  painter.setFont(font);
+  painter.drawText(QRectF(x - 10, y + 1, len + 20, 5), Qt::AlignHCenter | Qt::AlignTop, QString::fromStdString(plate.bar_label));
+  painter.drawText(QRectF(plate.drawing_origin_mm.x(), y + 1, plate.drawing_size_mm.x(), 5), Qt::AlignRight | Qt::AlignTop,
+                   QString::fromStdString(plate.scale_label));
+  painter.end();
+}
+}  // namespace
+
+FilterSpec illustration_plate_filter(int id) {
+  FilterSpec s{id, "Export Illustration Plate", QString(kPlateInfo), FilterInterface::MeshCreation, MeshModel::MM_NONE,
+               MeshModel::MM_NONE, plate_parameters, apply_plate, false};
+  return s;
+}
+
+}  // namespace reliefkit::ml

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The plates of docs/illustration.md: the coin (examples/illustration_plate.mlx, its unit 0.0099 mm
+# and 3:1) and a shared drawing's relief (Relief from Line Drawing, then the plate of its relief
+# and curves), each as SVG and PDF in docs/plates/ with PNG renders by rsvg-convert and pdftoppm.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+work="$here/build/plates"; out="$here/docs/plates"
+rm -rf "$work"; mkdir -p "$work" "$out"
+# The coin: a US cent is 19.05 mm across, its scan 1,924 units: 0.0099 mm a unit; drawn 3:1 on A4.
+cp "$here/examples/data/penny.ply" "$work/coin.ply"
+sed -e 's|name="unit_mm" value="1"|name="unit_mm" value="0.0099"|; s|value="1" name="unit_mm"|value="0.0099" name="unit_mm"|' \
+    -e 's|value="1" name="ratio"|value="3" name="ratio"|' \
+    -e 's|<Param type="RichEnum" value="0" enum_cardinality="3" name="page"/>|<Param type="RichEnum" value="1" enum_cardinality="3" name="page"/>|' \
+    "$here/examples/illustration_plate.mlx" > "$work/coin.mlx"
+"$here/scripts/meshlabserver" -i "$work/coin.ply" -s "$work/coin.mlx" > "$work/coin.log" 2>&1
+grep "Illustration plate" "$work/coin.log" | tail -1
+cp "$work/coin-plate.svg" "$out/coin-plate.svg"; cp "$work/coin-plate.pdf" "$out/coin-plate.pdf"
+rsvg-convert --dpi-x 100 --dpi-y 100 -o "$here/docs/img/plate_coin_svg.png" "$out/coin-plate.svg"
+pdftoppm -r 100 -png -singlefile "$out/coin-plate.pdf" "$here/docs/img/plate_coin_pdf"
+# A shared drawing's relief: Relief from Line Drawing on a lithic drawing of ../shared/data (its
+# relief in mm from the drawing's DPI), then the plate of the relief with the drawing's curves,
+# from above, 1:1, lit from the top left.
+drawing="$here/../shared/data/drawings/lithic_replica_1.png"
+if [ -f "$drawing" ]; then
+  sed -e "s|value=\"examples/data/nested_drawing.png\"|value=\"$drawing\"|" "$here/examples/drawing_relief.mlx" |
+    sed -e 's|</FilterScript>||' > "$work/lithic.mlx"
+  cat >> "$work/lithic.mlx" <<EOT
+ <filter name="Export Illustration Plate">
+  <Param type="RichSaveFile" value="$work/lithic-plate.svg" name="file" ext="*.svg"/>
+  <Param type="RichBool" value="true" name="pdf"/>
+  <Param type="RichString" value="all" name="layers"/>
+  <Param type="RichEnum" value="1" enum_cardinality="3" name="view"/>
+  <Param type="RichPoint3f" x="0" y="0" z="-1" name="direction"/>
+  <Param type="RichFloat" value="1" name="unit_mm"/>
+  <Param type="RichFloat" value="1" name="ratio"/>
+  <Param type="RichEnum" value="2" enum_cardinality="4" name="shading"/>
+  <Param type="RichInt" value="300" name="dpi"/>
+  <Param type="RichFloat" value="0.35" name="width"/>
+  <Param type="RichEnum" value="0" enum_cardinality="3" name="page"/>
+ </filter>
+</FilterScript>
+EOT
+  (cd "$here" && scripts/meshlabserver -s "$work/lithic.mlx" > "$work/lithic.log" 2>&1)
+  grep "Illustration plate" "$work/lithic.log" | tail -1
+  cp "$work/lithic-plate.svg" "$work/lithic-plate.pdf" "$out/"
+  rsvg-convert --dpi-x 60 --dpi-y 60 -o "$here/docs/img/plate_lithic_svg.png" "$out/lithic-plate.svg"
+fi

@@ -1,0 +1,114 @@
+// "Export Illustration Plate" through the real meshlabserver: a disc of radius 0.5 raised on a
+// plane, its demarcating curves drawn from above at 1:1 with the mesh unit 50 mm — every point of
+// the SVG's paths on the circle of 25 mm, the page, the PDF read by pdfinfo and drawn by pdftoppm,
+// the SVG drawn by rsvg-convert; bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <regex>
+#include <sstream>
+
+#include "reliefs.h"
+#include "server.h"
+
+using namespace rktest;
+
+namespace {
+
+std::string demarcating() {
+  return mlx_filter("Demarcating Curves", {param_float("threshold", 1), param_string("presmoothing", "auto"),
+                                           param_float("min_length", 4), param_bool("per_vertex", true),
+                                           param_bool("quality", false), param_float("lift", 0)});
+}
+
+std::string plate(const std::string& file, int view, int page, const std::string& layers = "all") {
+  return mlx_filter("Export Illustration Plate",
+                    {param_save_file("file", file, "*.svg"), param_bool("pdf", true), param_string("layers", layers),
+                     param_enum("view", view, 3), param_point("direction", 0, 0, -1), param_float("unit_mm", 50),
+                     param_float("ratio", 1), param_enum("shading", 0, 4), param_int("dpi", 150), param_float("width", 0.35),
+                     param_enum("page", page, 3)});
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream f(path);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+std::string command_output(const std::string& cmd) {
+  std::string out;
+  FILE* p = popen(cmd.c_str(), "r");
+  char buf[512];
+  while (fgets(buf, sizeof buf, p)) out += buf;
+  pclose(p);
+  return out;
+}
+}  // namespace
+
+TEST(PlateFilter, TheDiscsOutlineIsDrawnToScale) {
+  const Relief r = disc_on_plane({}, 120);
+  std::string dir;
+  const ServerRun run = run_filters("plate_disc", r.mesh, {demarcating(), plate("", 1, 0)}, {}, &dir);
+  ASSERT_EQ(run.status, 0) << run.output;
+  // The file's default place: beside the mesh's file (in.ply), named <mesh>-plate.svg.
+  const std::string svg = read_text(dir + "/in-plate.svg");
+  ASSERT_FALSE(svg.empty()) << run.output;
+  EXPECT_NE(run.output.find("Illustration plate: 120.0 x 132.0 mm at 1:1"), std::string::npos) << run.output;
+  // Every path point on the circle of radius 0.5 x 50 mm around the drawing's centre.
+  const double cx = 10 + 50, cy = 10 + 50;  // the 100 mm drawing inside its 10 mm margins
+  const std::regex pair(R"((-?[0-9.]+),(-?[0-9.]+))");
+  double worst = 0;
+  int points = 0;
+  for (std::sregex_iterator it(svg.begin(), svg.end(), pair), end; it != end; ++it) {
+    const double x = std::stod((*it)[1]), y = std::stod((*it)[2]);
+    worst = std::max(worst, std::abs(std::hypot(x - cx, y - cy) - 25));
+    ++points;
+  }
+  std::printf("%d path points, worst %.3f mm off the 25 mm circle\n", points, worst);
+  EXPECT_GT(points, 50);
+  EXPECT_LT(worst, 0.2);  // measured 0.036 mm (the step's width is 0.04 x 50 = 2 mm)
+  // Real renderers: the SVG at 150 dpi, the PDF's page and its drawing.
+  ASSERT_EQ(std::system(("rsvg-convert --dpi-x 150 --dpi-y 150 -o '" + dir + "/svg.png' '" + dir + "/in-plate.svg'").c_str()), 0);
+  const cv::Mat svg_png = cv::imread(dir + "/svg.png", cv::IMREAD_GRAYSCALE);
+  EXPECT_NEAR(svg_png.cols, 120 / 25.4 * 150, 1.5);
+  const std::string info = command_output("pdfinfo '" + dir + "/in-plate.pdf'");
+  std::smatch size;
+  ASSERT_TRUE(std::regex_search(info, size, std::regex(R"(Page size:\s+([0-9.]+) x ([0-9.]+) pts)"))) << info;
+  EXPECT_NEAR(std::stod(size[1]), 120 / 25.4 * 72, 1.0) << info;  // 120 x 132 mm (Qt keeps whole points)
+  EXPECT_NEAR(std::stod(size[2]), 132 / 25.4 * 72, 1.0) << info;
+  ASSERT_EQ(std::system(("pdftoppm -r 50 -png '" + dir + "/in-plate.pdf' '" + dir + "/pdf'").c_str()), 0);
+  const cv::Mat pdf_png = cv::imread(dir + "/pdf-1.png", cv::IMREAD_GRAYSCALE);
+  ASSERT_FALSE(pdf_png.empty());
+  double lo = 255;
+  cv::minMaxLoc(pdf_png, &lo);
+  EXPECT_LT(lo, 60) << "the PDF has black lines";
+}
+
+TEST(PlateFilter, AnA4PageAndBadInput) {
+  const Relief r = disc_on_plane({}, 60);
+  std::string dir;
+  ServerRun run = run_filters("plate_a4", r.mesh, {demarcating(), plate("a4.svg", 0, 1)}, {}, &dir);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(command_output("pdfinfo '" + dir + "/a4.pdf'").find("(A4)"), std::string::npos);
+  // No curve layer: a clear message, no file.
+  run = run_filters("plate_no_curves", r.mesh, {plate("none.svg", 0, 0)}, {}, &dir);
+  EXPECT_FALSE(run.crashed);
+  EXPECT_NE(run.output.find("There is no curve to draw"), std::string::npos) << run.output;
+  EXPECT_TRUE(read_text(dir + "/none.svg").empty());
+  // A layer asked for by a name that is not there.
+  run = run_filters("plate_bad_name", r.mesh, {demarcating(), plate("x.svg", 0, 0, "no such layer")}, {}, &dir);
+  EXPECT_NE(run.output.find("No curve layer is called no such layer"), std::string::npos) << run.output;
+  // A drawing of 2 m at 1:1 does not fit an A4 page.
+  run = run_filters("plate_too_big", r.mesh,
+                    {demarcating(), mlx_filter("Export Illustration Plate",
+                                               {param_save_file("file", "big.svg", "*.svg"), param_bool("pdf", false), param_string("layers", "all"),
+                                                param_enum("view", 1, 3), param_point("direction", 0, 0, -1),
+                                                param_float("unit_mm", 1000), param_float("ratio", 1), param_enum("shading", 0, 4),
+                                                param_int("dpi", 50), param_float("width", 0.35), param_enum("page", 1, 3)})},
+                    {}, &dir);
+  EXPECT_NE(run.output.find("Choose a smaller scale or a larger page"), std::string::npos) << run.output;
+}
