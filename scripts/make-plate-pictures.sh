@@ -45,3 +45,17 @@ EOT
   cp "$work/lithic-plate.svg" "$work/lithic-plate.pdf" "$out/"
   rsvg-convert --dpi-x 60 --dpi-y 60 -o "$here/docs/img/plate_lithic_svg.png" "$out/lithic-plate.svg"
 fi
+# The filter's dialog in MeshLab's GUI, found by MeshLab's filter search.
+cat > "$work/dialog.txt" <<'EOT'
+sleep 6
+click 1258 46
+sleep 1
+type Export Illustration Plate
+sleep 1.5
+key Down
+key Return
+sleep 2.5
+shot dialog.png
+EOT
+(cd "$work" && "$here/scripts/gui-shots.sh" "$work/dialog.txt" -- "$work/coin.ply" > /dev/null)
+convert "$work/dialog.png" -crop 530x620+0+0 +repage "$here/docs/img/plate_dialog.png"
