@@ -84,6 +84,16 @@ bool relay_output(Worker& w, const std::string& tag, const std::function<void(co
   return true;
 }
 
+// What to do when MeshLab's importer stopped on the file (Debian builds MeshLab with assertions,
+// and its OBJ importer fails one on some files).
+std::string importer_hint(const std::deque<std::string>& last_lines) {
+  for (const auto& l : last_lines)
+    if (l.find("Assertion") != std::string::npos && l.find("import_") != std::string::npos)
+      return ". MeshLab's importer stopped on this file: convert it to PLY (for an OBJ: assimp export scan.obj scan.ply "
+             "-jiv, from Debian's assimp-utils) and run it again";
+  return "";
+}
+
 // The record of a finished worker: its own, or one saying how it ended.
 FileResult outcome(const Worker& w, const Job& job, int wait_status, const RunOptions& o) {
   FileResult r;
@@ -107,6 +117,7 @@ FileResult outcome(const Worker& w, const Job& job, int wait_status, const RunOp
     if (WIFSIGNALED(wait_status)) why << "the process handling it died of signal " << WTERMSIG(wait_status) << " (" << strsignal(WTERMSIG(wait_status)) << ")";
     else why << "the process handling it ended with status " << WEXITSTATUS(wait_status) << " and no result";
   }
+  why << importer_hint(w.last_lines);
   if (!w.last_lines.empty()) {
     why << "; its last lines:";
     for (const auto& l : w.last_lines) why << " | " << l;

@@ -48,6 +48,13 @@ std::vector<Step> steps_of(const Recipe& recipe) {
   return steps;
 }
 
+// The file's outputs folder, <output>/<relative path without extension>, made.
+fs::path outputs_folder(const WorkerRequest& request) {
+  const fs::path outputs = fs::path(request.output) / fs::path(request.relative).replace_extension();
+  fs::create_directories(outputs);
+  return outputs;
+}
+
 // The parameters of one step: the filter's defaults for this document, the script's values, the
 // command line's name=value, "{input}" replaced by the file's path and "{output}" by its outputs' folder.
 RichParameterList parameters_of(MeshLabSession& ml, MeshDocument& doc, const Step& step, const WorkerRequest& request) {
@@ -60,9 +67,8 @@ RichParameterList parameters_of(MeshLabSession& ml, MeshDocument& doc, const Ste
       if (!list.hasParameter(n)) throw std::runtime_error("the filter " + step.filter.toStdString() + " has no parameter " + name);
       set_from_text(list, list.getParameterByName(n), QString::fromStdString(text));
     }
-  const fs::path outputs = fs::path(request.output) / fs::path(request.relative).replace_extension();
-  fs::create_directories(outputs);
-  substitute_input(list, QFileInfo(QString::fromStdString(request.file)).absoluteFilePath(), QString::fromStdString(outputs.string()));
+  substitute_input(list, QFileInfo(QString::fromStdString(request.file)).absoluteFilePath(),
+                   QString::fromStdString(outputs_folder(request).string()));
   return list;
 }
 
@@ -129,7 +135,10 @@ void run_recipe(MeshLabSession& ml, const WorkerRequest& request, FileResult& re
   MeshDocument doc;
   const QString file = QString::fromStdString(request.file);
   if (ml.can_read(QFileInfo(file).suffix())) {
-    const MeshModel& mm = ml.import_mesh(doc, file);
+    MeshModel& mm = ml.import_mesh(doc, file);
+    // The layer's file is taken to be in the outputs folder, so that what a filter writes "beside
+    // the mesh's file" (a plate) goes there, never into the collection.
+    mm.setFileName(QString::fromStdString((outputs_folder(request) / fs::path(request.file).filename()).string()));
     result.vertices = mm.cm.vn;
     result.faces = mm.cm.fn;
   }

@@ -2,6 +2,7 @@
 // out by the core, written as SVG (the core) and PDF (Qt's QPdfWriter, the same page drawn).
 #include "plate_filter.h"
 
+#include <QElapsedTimer>
 #include <QFile>
 #include <QFileInfo>
 #include <QPainter>
@@ -31,6 +32,8 @@ const QStringList kViews{"Facing the relief (its least extent)", "From +Z (MeshL
 const QStringList kShadings{"Automatic (vertex colours if any, else light)", "Vertex colours", "Light from the top left",
                             "None (white paper)"};
 const QStringList kPages{"Fit the drawing", "A4 portrait", "A4 landscape"};
+const QStringList kWeights{"By curve strength (three weights)", "By layer (the first heaviest)", "One weight"};
+const QStringList kSections{"None", "Vertical (profile to the right)", "Horizontal (profile below)"};
 
 void plate_parameters(const MeshModel&, RichParameterList& par) {
   par.addParam(RichSaveFile("file", "", "*.svg", "Plate file (SVG)",
@@ -43,10 +46,20 @@ void plate_parameters(const MeshModel&, RichParameterList& par) {
                                                    "normals face (a coin, a plaque, a sherd's exterior)."));
   par.addParam(RichDirection("direction", vcg::Point3f(0, 0, -1), "View direction (given)", "Looking along this direction."));
   par.addParam(RichFloat("unit_mm", 1.0f, "Mesh unit (mm)", "Millimetres per unit of the mesh: 1 for a scan in mm, 10 for cm, 25.4 for inches."));
-  par.addParam(RichFloat("ratio", 1.0f, "Scale (drawn / real)", "1 for 1:1, 2 for 2:1, 0.5 for 1:2."));
+  par.addParam(RichFloat("ratio", 0.0f, "Scale (drawn / real)",
+                         "1 for 1:1, 2 for 2:1, 0.5 for 1:2. 0: automatic, the largest standard scale (5:1, 2:1, 1:1, "
+                         "1:2...) at which the plate fits the page (A4 when the page fits the drawing)."));
   par.addParam(RichEnum("shading", 0, kShadings, "Shading", "The grey under the lines."));
   par.addParam(RichInt("dpi", 300, "Shading resolution (dpi)", "Of the shading raster on the page (the lines are vectors)."));
   par.addParam(RichFloat("width", 0.35f, "Line width (mm)", "Of the curves (a technical pen's 0.35 mm by default)."));
+  par.addParam(RichEnum("weights", 0, kWeights, "Line weights",
+                        "By strength: the strongest third of the curves 0.5 mm, the weakest third 0.25 mm (for the "
+                        "0.35 mm width). By layer: the first layer 0.5 mm, the second 0.35, the others 0.25."));
+  par.addParam(RichEnum("section", 0, kSections, "Cross-section",
+                        "The profile of the object cut along a line of the drawing, drawn beside it at the same scale; "
+                        "the line marked dash-dot."));
+  par.addParam(RichFloat("section_at", 0.5f, "Section place", "Where the section's line crosses the drawing: a fraction of "
+                                                              "its width (vertical) or height (horizontal); 0.5 the middle."));
   par.addParam(RichEnum("page", 0, kPages, "Page", "Fit: the drawing with 10 mm margins. A4: the drawing centred on the page."));
 }
 
@@ -58,13 +71,15 @@ std::vector<PlateCurves> curve_layers(FilterCall& call, const QString& wanted, d
   std::vector<PlateCurves> layers;
   for (MeshModel* m : document_layers(call.doc)) {
     if (m->cm.fn > 0 || m->cm.en == 0 || !(all || names.contains(m->label()))) continue;
-    PlateCurves c{m->label().toStdString(), {}, {}, width_mm};
+    PlateCurves c{m->label().toStdString(), {}, {}, width_mm, {}};
+    const bool strength = m->hasDataMask(MeshModel::MM_VERTQUALITY);  // the curve filters' strength
     std::vector<int> index(size_t(m->cm.vert.size()), -1);
     for (size_t i = 0; i < m->cm.vert.size(); ++i)
       if (!m->cm.vert[i].IsD()) {
         const auto& q = m->cm.vert[i].cP();
         index[i] = int(c.points.size());
         c.points.push_back(Vec3(q[0], q[1], q[2]));
+        if (strength) c.strength.push_back(m->cm.vert[i].cQ());
       }
     for (const auto& e : m->cm.edge)
       if (!e.IsD()) c.segments.push_back({index[size_t(vcg::tri::Index(m->cm, e.cV(0)))], index[size_t(vcg::tri::Index(m->cm, e.cV(1)))]});
@@ -90,16 +105,20 @@ std::vector<double> shading_of(MeshModel& m, const View& view, int choice) {
 
 void write_pdf(const Plate& plate, const QString& path);
 
-void apply_plate(FilterCall& call) {
-  View view = view_of(call.mesh(), call.log);
+PlateParams plate_params(FilterCall& call) {
   PlateParams p;
   p.unit_mm = read_float(call, "unit_mm", "Mesh unit (mm)", 1e-9, 1e9);
-  p.ratio = read_float(call, "ratio", "Scale (drawn / real)", 1e-6, 1000);
+  p.ratio = read_float(call, "ratio", "Scale (drawn / real)", 0, 1000);
   p.dpi = read_int(call, "dpi", "Shading resolution (dpi)", 50, 2400);
   const int page = read_enum(call, "page", "Page", kPages.size());
   if (page > 0) p.page_width_mm = page == 1 ? 210 : 297, p.page_height_mm = page == 1 ? 297 : 210;
-  const std::vector<PlateCurves> layers =
-      curve_layers(call, call.params.getString("layers"), read_float(call, "width", "Line width (mm)", 0.01, 10));
+  p.weights = LineWeights(read_enum(call, "weights", "Line weights", kWeights.size()));
+  p.section.axis = SectionAxis(read_enum(call, "section", "Cross-section", kSections.size()));
+  p.section.at = read_float(call, "section_at", "Section place", 0, 1);
+  return p;
+}
+
+PlateView plate_view(FilterCall& call, const View& view) {
   PlateView v;
   const int view_choice = read_enum(call, "view", "View", kViews.size());
   if (view_choice == 0) v = facing_view(view.mesh);
@@ -107,22 +126,53 @@ void apply_plate(FilterCall& call) {
     const vcg::Point3f d = call.params.getPoint3m("direction");
     v.direction = Vec3(d[0], d[1], d[2]);
   }
-  const Plate plate = make_plate(view.mesh, shading_of(call.mesh(), view, read_enum(call, "shading", "Shading", kShadings.size())),
-                                 layers, v, p);
+  return v;
+}
+
+// The SVG file asked for (a relative name or none: beside the mesh's file), written.
+QString write_svg(FilterCall& call, const Plate& plate) {
   QString svg = call.params.getSaveFileName("file").trimmed();
   if (svg.isEmpty()) svg = QFileInfo(call.mesh().fullName()).completeBaseName() + "-plate.svg";
-  if (QFileInfo(svg).isRelative()) svg = call.mesh().pathName() + "/" + svg;  // beside the mesh's file
+  if (QFileInfo(svg).isRelative()) svg = call.mesh().pathName() + "/" + svg;
   QFile out(svg);
   if (!out.open(QIODevice::WriteOnly) || out.write(QByteArray::fromStdString(plate_svg(plate))) < 0)
     throw InputError(qUtf8Printable("The plate could not be written to " + svg + " (check the folder exists and is writable)."));
-  out.close();
+  return svg;
+}
+
+// The object's size at the unit given: a scan whose unit is not the millimetre gives itself away.
+QString size_check(const Plate& plate, double unit_mm) {
+  const Vec2 s = plate.real_size_mm;
+  QString text = QString("the object %1 x %2 mm at %3 mm per unit").arg(s.x(), 0, 'g', 4).arg(s.y(), 0, 'g', 4).arg(unit_mm);
+  if (std::max(s.x(), s.y()) > 1000 || std::max(s.x(), s.y()) < 5)
+    text += " — if that is not its size, set Mesh unit (mm) to the scan's unit";
+  return text;
+}
+
+void apply_plate(FilterCall& call) {
+  QElapsedTimer timer;
+  timer.start();
+  View view = view_of(call.mesh(), call.log);
+  PlateParams p = plate_params(call);
+  p.progress = call.progress;
+  const double width = read_float(call, "width", "Line width (mm)", 0.01, 10);
+  p.section.width_mm = width * 0.5 / 0.35;  // the profile in the heavy pen
+  const std::vector<PlateCurves> layers = curve_layers(call, call.params.getString("layers"), width);
+  const Plate plate = make_plate(view.mesh, shading_of(call.mesh(), view, read_enum(call, "shading", "Shading", kShadings.size())),
+                                 layers, plate_view(call, view), p);
+  const QString svg = write_svg(call, plate);
   QString pdf;
   if (read_bool(call, "pdf", "Also as PDF")) write_pdf(plate, pdf = QFileInfo(svg).path() + "/" + QFileInfo(svg).completeBaseName() + ".pdf");
-  call.log(QString("Illustration plate: %1 x %2 mm at %3, %4 curve layer(s), %5 paths (%6 segments visible, %7 hidden); "
-                   "scale bar %8; written to %9%10.")
+  call.log(QString("Illustration plate: %1 x %2 mm at %3%4, %5 curve layer(s), %6 paths (%7 segments visible, %8 hidden)%9; "
+                   "%10; scale bar %11; written to %12%13; %14 s.")
                .arg(plate.width_mm, 0, 'f', 1).arg(plate.height_mm, 0, 'f', 1).arg(QString::fromStdString(plate.scale_label))
-               .arg(layers.size()).arg(plate.paths.size()).arg(thousands(plate.visible_segments)).arg(thousands(plate.hidden_segments))
-               .arg(QString::fromStdString(plate.bar_label)).arg(svg).arg(pdf.isEmpty() ? QString() : " and " + pdf));
+               .arg(p.ratio > 0 ? "" : " (automatic)").arg(layers.size()).arg(plate.paths.size())
+               .arg(thousands(plate.visible_segments))
+               .arg(thousands(plate.hidden_segments) +
+                    (plate.outside_segments > 0 ? QString(", %1 off the mesh's drawing").arg(thousands(plate.outside_segments)) : QString()))
+               .arg(plate.section_segments > 0 ? QString(", a section of %1 segments").arg(plate.section_segments) : QString())
+               .arg(size_check(plate, p.unit_mm)).arg(QString::fromStdString(plate.bar_label)).arg(svg)
+               .arg(pdf.isEmpty() ? QString() : " and " + pdf).arg(timer.elapsed() / 1000.0, 0, 'f', 2));
 }
 
 // The same page through QPainter: millimetres mapped to the PDF's points.
@@ -140,7 +190,9 @@ void write_pdf(const Plate& plate, const QString& path) {
   for (const auto& path_ : plate.paths) {
     QPainterPath line(QPointF(path_.points[0].x(), path_.points[0].y()));
     for (size_t i = 1; i < path_.points.size(); ++i) line.lineTo(path_.points[i].x(), path_.points[i].y());
-    painter.setPen(QPen(Qt::black, path_.width_mm, Qt::SolidLine, Qt::RoundCap, Qt::RoundJoin));
+    QPen pen(Qt::black, path_.width_mm, Qt::SolidLine, path_.dash_dot ? Qt::FlatCap : Qt::RoundCap, Qt::RoundJoin);
+    if (path_.dash_dot) pen.setDashPattern({3 / path_.width_mm, 1 / path_.width_mm, 0.5 / path_.width_mm, 1 / path_.width_mm});
+    painter.setPen(pen);
     painter.drawPath(line);
   }
   const double x = plate.bar_start_mm.x(), y = plate.bar_start_mm.y(), len = plate.bar_length_mm;
@@ -152,8 +204,7 @@ void write_pdf(const Plate& plate, const QString& path) {
   font.setPixelSize(3);  // 3 mm: the painter's unit is the millimetre
   painter.setFont(font);
   painter.drawText(QRectF(x - 10, y + 1, len + 20, 5), Qt::AlignHCenter | Qt::AlignTop, QString::fromStdString(plate.bar_label));
-  painter.drawText(QRectF(plate.drawing_origin_mm.x(), y + 1, plate.drawing_size_mm.x(), 5), Qt::AlignRight | Qt::AlignTop,
-                   QString::fromStdString(plate.scale_label));
+  painter.drawText(QRectF(x + len + 4, y - 2.5, 40, 5), Qt::AlignLeft | Qt::AlignVCenter, QString::fromStdString(plate.scale_label));
   painter.end();
 }
 }  // namespace

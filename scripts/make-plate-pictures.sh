@@ -36,6 +36,9 @@ if [ -f "$drawing" ]; then
   <Param type="RichEnum" value="2" enum_cardinality="4" name="shading"/>
   <Param type="RichInt" value="300" name="dpi"/>
   <Param type="RichFloat" value="0.35" name="width"/>
+  <Param type="RichEnum" value="1" enum_cardinality="3" name="weights"/>
+  <Param type="RichEnum" value="0" enum_cardinality="3" name="section"/>
+  <Param type="RichFloat" value="0.5" name="section_at"/>
   <Param type="RichEnum" value="0" enum_cardinality="3" name="page"/>
  </filter>
 </FilterScript>

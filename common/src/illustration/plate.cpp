@@ -14,11 +14,13 @@ namespace {
 void check_params(const PlateParams& p, const std::vector<PlateCurves>& layers) {
   auto positive = [](double v) { return std::isfinite(v) && v > 0; };
   if (!positive(p.unit_mm)) throw InputError("The mesh's unit in millimetres must be a positive number.");
-  if (!positive(p.ratio) || p.ratio > 1000) throw InputError("The scale must be a positive ratio (1 for 1:1, 2 for 2:1, 0.5 for 1:2).");
+  if (!(p.ratio == 0 || positive(p.ratio)) || p.ratio > 1000)
+    throw InputError("The scale must be a positive ratio (1 for 1:1, 2 for 2:1, 0.5 for 1:2) or 0 (automatic).");
   if (!(p.dpi >= 50 && p.dpi <= 2400)) throw InputError("The shading's resolution must be between 50 and 2400 dpi.");
   if (!(p.margin_mm >= 0 && p.margin_mm <= 200)) throw InputError("The margin must be between 0 and 200 mm.");
   if (!(p.hidden_px >= 0 && p.hidden_px <= 100) || !(p.simplify_px >= 0 && p.simplify_px <= 10))
     throw InputError("The hidden-line and simplification tolerances must be small non-negative numbers of pixels.");
+  if (!(p.section.at >= 0 && p.section.at <= 1)) throw InputError("The section's place must be a fraction between 0 and 1.");
   long segments = 0;
   for (const auto& l : layers) segments += long(l.segments.size());
   if (segments == 0)
@@ -26,11 +28,44 @@ void check_params(const PlateParams& p, const std::vector<PlateCurves>& layers) 
                      "Valleys...) that holds curves, or run one of those filters first.");
 }
 
-// The page: the drawing at its scale, the margins, the scale bar's room below; a fixed page when asked.
-void lay_out(Plate& plate, const Vec2& drawing_mm, const PlateParams& p) {
-  constexpr double kBarRoom = 12;  // below the drawing: the bar, its label and the scale
+constexpr double kBarRoom = 12;         // below the drawing: the bar, its label and the scale beside it
+constexpr double kBarLeastWidth = 32;   // the bar (at most 0.4 of the width) and the scale beside it
+
+// The frame at `ratio` from the frame at 1:1.
+PageFrame at_ratio(PageFrame frame, double ratio) {
+  frame.mm_per_unit *= ratio;
+  frame.drawing_mm *= ratio;
+  return frame;
+}
+
+// What the page holds besides its margins and the bar: the drawing and its section's profile.
+Vec2 content_mm(const PageFrame& frame, const PlateParams& p) { return frame.drawing_mm + section_room_mm(frame, p); }
+
+// The standard scale of archaeological drawing (drawn : real), the largest at which the content
+// fits the page — A4, portrait or landscape, when the page fits the drawing.
+double automatic_ratio(const PageFrame& real, const PlateParams& p) {
+  static const double kScales[] = {1000, 500, 200, 100, 50, 20, 10, 5, 4, 3, 2, 1, 1 / 2., 1 / 3., 1 / 4., 1 / 5., 1 / 10., 1 / 20., 1 / 50.,
+                                   1 / 100., 1 / 200., 1 / 500., 1 / 1000.};
+  std::vector<Vec2> pages{Vec2(p.page_width_mm, p.page_height_mm)};
+  if (p.page_width_mm <= 0 || p.page_height_mm <= 0) pages = {Vec2(210, 297), Vec2(297, 210)};
+  for (const Vec2& page : pages)
+    if (page.x() <= 2 * p.margin_mm || page.y() <= 2 * p.margin_mm + kBarRoom)
+      throw InputError("The page is too small for its margins and the scale bar.");
+  for (double ratio : kScales)
+    for (const Vec2& page : pages) {
+      const Vec2 room = page - Vec2(2 * p.margin_mm, 2 * p.margin_mm + kBarRoom), need = content_mm(at_ratio(real, ratio), p);
+      if (need.x() <= room.x() && need.y() <= room.y()) return ratio;
+    }
+  char msg[300];
+  std::snprintf(msg, sizeof msg, "The object is %.0f x %.0f mm at the mesh unit given (%g mm): too large for the page even at "
+                "1:1000. Check the mesh unit.", real.drawing_mm.x(), real.drawing_mm.y(), p.unit_mm);
+  throw InputError(msg);
+}
+
+// The page: the content at its scale, the margins, the scale bar's room below; a fixed page when asked.
+void lay_out(Plate& plate, const Vec2& drawing_mm, const Vec2& content, const PlateParams& p) {
   plate.drawing_size_mm = drawing_mm;
-  const double need_w = drawing_mm.x() + 2 * p.margin_mm, need_h = drawing_mm.y() + 2 * p.margin_mm + kBarRoom;
+  const double need_w = std::max(content.x(), kBarLeastWidth) + 2 * p.margin_mm, need_h = content.y() + 2 * p.margin_mm + kBarRoom;
   plate.width_mm = p.page_width_mm > 0 ? p.page_width_mm : need_w;
   plate.height_mm = p.page_height_mm > 0 ? p.page_height_mm : need_h;
   if (plate.width_mm + 1e-9 < need_w || plate.height_mm + 1e-9 < need_h) {
@@ -38,28 +73,37 @@ void lay_out(Plate& plate, const Vec2& drawing_mm, const PlateParams& p) {
     std::snprintf(msg, sizeof msg,
                   "At this scale the drawing is %.0f x %.0f mm and needs a page of %.0f x %.0f mm with its margins and "
                   "scale bar; the page is %.0f x %.0f mm. Choose a smaller scale or a larger page.",
-                  drawing_mm.x(), drawing_mm.y(), need_w, need_h, plate.width_mm, plate.height_mm);
+                  content.x(), content.y(), need_w, need_h, plate.width_mm, plate.height_mm);
     throw InputError(msg);
   }
-  plate.drawing_origin_mm = Vec2(0.5 * (plate.width_mm - drawing_mm.x()), 0.5 * (plate.height_mm - kBarRoom - drawing_mm.y()));
+  plate.drawing_origin_mm = Vec2(0.5 * (plate.width_mm - content.x()), 0.5 * (plate.height_mm - kBarRoom - content.y()));
 }
 
 // A round real length (1, 2 or 5 times a power of ten, in mm), the nearest (by ratio) to a quarter
-// of the drawing's width.
-void add_scale_bar(Plate& plate, const PlateParams& p) {
-  const double target_real = 0.25 * plate.drawing_size_mm.x() / p.ratio;
+// of the drawing's width, below the content.
+void add_scale_bar(Plate& plate, double content_height_mm) {
+  const double target_real = 0.25 * plate.drawing_size_mm.x() / plate.ratio;
   const double decade = std::pow(10.0, std::floor(std::log10(std::max(target_real, 1e-9))));
   double real = decade;
   for (double m : {2.0, 5.0, 10.0})
     if (std::abs(std::log(m * decade / target_real)) < std::abs(std::log(real / target_real))) real = m * decade;
-  plate.bar_length_mm = real * p.ratio;
-  plate.bar_start_mm = plate.drawing_origin_mm + Vec2(0, plate.drawing_size_mm.y() + 4);
+  plate.bar_length_mm = real * plate.ratio;
+  plate.bar_start_mm = plate.drawing_origin_mm + Vec2(0, content_height_mm + 4);
   char text[64];
   std::snprintf(text, sizeof text, "%g mm", real);
   plate.bar_label = text;
-  if (p.ratio >= 1) std::snprintf(text, sizeof text, "%g:1", p.ratio);
-  else std::snprintf(text, sizeof text, "1:%g", 1 / p.ratio);
+  if (plate.ratio >= 1) std::snprintf(text, sizeof text, "%g:1", plate.ratio);
+  else std::snprintf(text, sizeof text, "1:%g", 1 / plate.ratio);
   plate.scale_label = text;
+}
+// A plate without lines is no plate: say why.
+void check_drawn(const Plate& plate) {
+  if (plate.visible_segments > 0) return;
+  if (plate.hidden_segments == 0)
+    throw InputError("The curves lie off the mesh's drawing: they are not this mesh's curves. Make the mesh they were "
+                     "found on current, or name its curve layers.");
+  throw InputError("Every curve is hidden behind the surface from this view: choose another view (Facing the relief, or "
+                   "the direction the curves are seen from).");
 }
 }  // namespace
 
@@ -90,15 +134,23 @@ Plate make_plate(const TriMesh& mesh, const std::vector<double>& grey, const std
   require_triangles(mesh);
   check_params(params, layers);
   if (!grey.empty() && grey.size() != mesh.vertices.size()) throw InputError("The shading has not one value per vertex.");
-  const PageFrame frame = page_frame(mesh, view, params);
+  const PageFrame real = page_frame(mesh, view, params.unit_mm);
   Plate plate;
-  lay_out(plate, frame.drawing_mm, params);
+  plate.real_size_mm = real.drawing_mm;
+  plate.ratio = params.ratio > 0 ? params.ratio : automatic_ratio(real, params);
+  const PageFrame frame = at_ratio(real, plate.ratio);
+  lay_out(plate, frame.drawing_mm, content_mm(frame, params), params);
+  if (params.progress) params.progress(5, "Plate: the surface's depth and shading");
   const DepthRaster raster = rasterize(mesh, grey, frame, params);
   plate.shading = raster.grey;
-  for (const auto& layer : layers) add_visible_paths(plate, layer, frame, raster, params);
+  if (params.progress) params.progress(50, "Plate: hidden lines");
+  for (size_t k = 0; k < layers.size(); ++k) add_visible_paths(plate, layers[k], int(k), frame, raster, params);
+  check_drawn(plate);
   for (auto& path : plate.paths)
     for (auto& q : path.points) q += plate.drawing_origin_mm;
-  add_scale_bar(plate, params);
+  if (params.progress) params.progress(80, "Plate: the section");
+  add_section(plate, mesh, frame, params);
+  add_scale_bar(plate, content_mm(frame, params).y());
   return plate;
 }
 

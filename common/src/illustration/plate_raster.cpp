@@ -62,7 +62,7 @@ void draw_triangle(const ScreenVertex (&t)[3], cv::Mat& depth, cv::Mat& grey) {
 }
 }  // namespace
 
-PageFrame page_frame(const TriMesh& mesh, const PlateView& view, const PlateParams& params) {
+PageFrame page_frame(const TriMesh& mesh, const PlateView& view, double mm_per_unit) {
   PageFrame f;
   if (!view.direction.allFinite() || view.direction.norm() < 1e-12) throw InputError("The view direction must not be zero.");
   f.ahead = view.direction.normalized();
@@ -71,13 +71,15 @@ PageFrame page_frame(const TriMesh& mesh, const PlateView& view, const PlatePara
   f.up = up.normalized();
   f.right = f.ahead.cross(f.up);
   double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
+  f.nearest = 1e300, f.farthest = -1e300;
   for (const auto& p : mesh.vertices) {
     lo_x = std::min(lo_x, p.dot(f.right)), hi_x = std::max(hi_x, p.dot(f.right));
     lo_y = std::min(lo_y, p.dot(f.up)), hi_y = std::max(hi_y, p.dot(f.up));
+    f.nearest = std::min(f.nearest, p.dot(f.ahead)), f.farthest = std::max(f.farthest, p.dot(f.ahead));
   }
   f.left = lo_x;
   f.top = hi_y;
-  f.mm_per_unit = params.unit_mm * params.ratio;
+  f.mm_per_unit = mm_per_unit;
   f.drawing_mm = Vec2((hi_x - lo_x) * f.mm_per_unit, (hi_y - lo_y) * f.mm_per_unit);
   if (!(f.drawing_mm.x() > 1e-3 && f.drawing_mm.y() > 1e-3))
     throw InputError("Seen from this view the mesh has no area (it is seen edge-on, or it is a line or a point): choose "

@@ -13,14 +13,16 @@ namespace reliefkit {
 struct PageFrame {
   Vec3 right, up, ahead;
   double left = 0, top = 0;  // the projection's extreme coordinates (mesh units)
+  double nearest = 0, farthest = 0;  // the mesh's extreme depths (mesh units)
   double mm_per_unit = 1;
   Vec2 drawing_mm{0, 0};
   Vec2 to_mm(const Vec3& p) const { return Vec2((p.dot(right) - left) * mm_per_unit, (top - p.dot(up)) * mm_per_unit); }
   double depth(const Vec3& p) const { return p.dot(ahead); }
 };
 
-/// Throws InputError when the view sees the mesh as a line or a point (no area).
-PageFrame page_frame(const TriMesh& mesh, const PlateView& view, const PlateParams& params);
+/// The frame at `mm_per_unit` millimetres on the page per mesh unit. Throws InputError when the
+/// view sees the mesh as a line or a point (no area).
+PageFrame page_frame(const TriMesh& mesh, const PlateView& view, double mm_per_unit);
 
 /// The surface seen from the view at params.dpi: nearest depth per pixel (+inf where there is no
 /// surface) and the grey of the surface there (per-vertex grey interpolated, or Lambertian).
@@ -32,10 +34,19 @@ struct DepthRaster {
 };
 DepthRaster rasterize(const TriMesh& mesh, const std::vector<double>& grey, const PageFrame& frame, const PlateParams& params);
 
-/// The layer's curves, chained into polylines, split where they go behind the surface,
-/// simplified, appended to plate.paths (millimetres from the drawing's top-left); the segments
-/// counted visible or hidden.
-void add_visible_paths(Plate& plate, const PlateCurves& layer, const PageFrame& frame, const DepthRaster& raster,
-                       const PlateParams& params);
+/// The layer's curves (the layer_index-th drawn), chained into polylines, split where they go
+/// behind the surface, simplified, weighted (params.weights), appended to plate.paths
+/// (millimetres from the drawing's top-left); the segments counted visible or hidden.
+void add_visible_paths(Plate& plate, const PlateCurves& layer, int layer_index, const PageFrame& frame,
+                       const DepthRaster& raster, const PlateParams& params);
+
+/// The room the section's profile takes beside the drawing (to the right, or below), in mm at
+/// the frame's scale; zero without a section.
+Vec2 section_room_mm(const PageFrame& frame, const PlateParams& params);
+
+/// The mesh cut by the section's plane: its profile appended to plate.paths (layer "section",
+/// placed in the room beside the drawing) and the section's line on the drawing (dash-dot).
+/// Throws InputError when the plane misses the mesh.
+void add_section(Plate& plate, const TriMesh& mesh, const PageFrame& frame, const PlateParams& params);
 
 }  // namespace reliefkit

@@ -45,7 +45,7 @@ void write_paths(std::ostringstream& svg, const Plate& p) {
       layer = path.layer;
       svg << " <g id=\"" << escaped(layer) << "\" fill=\"none\" stroke=\"black\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
     }
-    svg << "  <path stroke-width=\"" << path.width_mm << "\" d=\"M";
+    svg << "  <path stroke-width=\"" << path.width_mm << (path.dash_dot ? "\" stroke-dasharray=\"3 1 0.5 1" : "") << "\" d=\"M";
     for (size_t k = 0; k < path.points.size(); ++k) svg << (k ? " " : "") << path.points[k].x() << ',' << path.points[k].y();
     svg << "\"/>\n";
   }
@@ -61,8 +61,8 @@ void write_scale_bar(std::ostringstream& svg, const Plate& p) {
       << " </g>\n"
       << " <text x=\"" << x + 0.5 * len << "\" y=\"" << y + 4 << "\" font-family=\"DejaVu Sans, sans-serif\" font-size=\"3\" "
       << "text-anchor=\"middle\">" << escaped(p.bar_label) << "</text>\n"
-      << " <text x=\"" << p.drawing_origin_mm.x() + p.drawing_size_mm.x() << "\" y=\"" << y + 4
-      << "\" font-family=\"DejaVu Sans, sans-serif\" font-size=\"3\" text-anchor=\"end\">" << escaped(p.scale_label) << "</text>\n";
+      << " <text x=\"" << x + len + 4 << "\" y=\"" << y + 1.1
+      << "\" font-family=\"DejaVu Sans, sans-serif\" font-size=\"3\">" << escaped(p.scale_label) << "</text>\n";
 }
 }  // namespace
 

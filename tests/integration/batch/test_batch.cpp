@@ -189,4 +189,26 @@ TEST(BatchTool, APlateForEveryScan) {
   EXPECT_NE(r.output.find("Illustration plate: "), std::string::npos) << r.output;
   EXPECT_NE(read_text(out + "/torus/plate.svg").find("<path"), std::string::npos);
   EXPECT_TRUE(fs::exists(out + "/torus/plate.pdf"));
+  // The default file, "beside the mesh's file", is in the file's outputs folder: the collection
+  // is left as it was.
+  const std::string default_script = dir + "/default.mlx";
+  std::ofstream(default_script) << "<!DOCTYPE FilterScript>\n<FilterScript>\n"
+                                << rktest::mlx_filter("Demarcating Curves", {rktest::param_float("threshold", 0.3)})
+                                << rktest::mlx_filter("Export Illustration Plate", {}) << "</FilterScript>\n";
+  const BatchRun d = batch({"--script", default_script, "--save", "none", scans + "/b", dir + "/out2"});
+  EXPECT_EQ(d.status, 0) << d.output;
+  EXPECT_TRUE(fs::exists(dir + "/out2/torus/torus-plate.svg")) << d.output;
+  EXPECT_FALSE(fs::exists(scans + "/b/torus-plate.svg"));
+}
+
+TEST(BatchTool, AnObjMeshLabsImporterStopsOnSaysWhatToDo) {
+  // MeshLab 2020.09's OBJ importer fails an assertion on an OBJ ending in blank lines (as the
+  // shared fertility.obj does): the file is recorded crashed, with the conversion to PLY to make.
+  const std::string dir = rktest::temp_dir("batch_obj");
+  fs::create_directories(dir + "/scans");
+  std::ofstream(dir + "/scans/blank_lines.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n\n\n";
+  const BatchRun r = batch({"--filter", "Demarcating Curves", dir + "/scans", dir + "/out"});
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("0 ok, 0 failed, 1 crashed"), std::string::npos) << r.output;
+  EXPECT_NE(read_text(dir + "/out/summary.csv").find("convert it to PLY"), std::string::npos) << r.output;
 }

@@ -11,6 +11,8 @@
 #include <regex>
 #include <sstream>
 
+#include "bad_input.h"
+#include "mesh_files.h"
 #include "reliefs.h"
 #include "server.h"
 
@@ -24,11 +26,17 @@ std::string demarcating() {
                                            param_bool("quality", false), param_float("lift", 0)});
 }
 
-std::string plate(const std::string& file, int view, int page, const std::string& layers = "all") {
+struct PlateOptions {
+  double unit_mm = 50, ratio = 1;
+  int section = 0;  // none, vertical, horizontal
+};
+
+std::string plate(const std::string& file, int view, int page, const std::string& layers = "all", PlateOptions o = {}) {
   return mlx_filter("Export Illustration Plate",
                     {param_save_file("file", file, "*.svg"), param_bool("pdf", true), param_string("layers", layers),
-                     param_enum("view", view, 3), param_point("direction", 0, 0, -1), param_float("unit_mm", 50),
-                     param_float("ratio", 1), param_enum("shading", 0, 4), param_int("dpi", 150), param_float("width", 0.35),
+                     param_enum("view", view, 3), param_point("direction", 0, 0, -1), param_float("unit_mm", o.unit_mm),
+                     param_float("ratio", o.ratio), param_enum("shading", 0, 4), param_int("dpi", 150), param_float("width", 0.35),
+                     param_enum("weights", 0, 3), param_enum("section", o.section, 3), param_float("section_at", 0.5),
                      param_enum("page", page, 3)});
 }
 
@@ -94,6 +102,15 @@ TEST(PlateFilter, AnA4PageAndBadInput) {
   ServerRun run = run_filters("plate_a4", r.mesh, {demarcating(), plate("a4.svg", 0, 1)}, {}, &dir);
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(command_output("pdfinfo '" + dir + "/a4.pdf'").find("(A4)"), std::string::npos);
+  // The scale chosen (the disc 20 mm across at 10 mm per unit: 5:1 is the largest that fits A4)
+  // and a section's profile beside the drawing.
+  run = run_filters("plate_auto", r.mesh, {demarcating(), plate("auto.svg", 1, 0, "all", {10, 0, 1})}, {}, &dir);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("at 5:1 (automatic)"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("a section of"), std::string::npos) << run.output;
+  const std::string auto_svg = read_text(dir + "/auto.svg");
+  EXPECT_NE(auto_svg.find("<g id=\"section\""), std::string::npos);
+  EXPECT_NE(auto_svg.find("stroke-dasharray"), std::string::npos);
   // No curve layer: a clear message, no file.
   run = run_filters("plate_no_curves", r.mesh, {plate("none.svg", 0, 0)}, {}, &dir);
   EXPECT_FALSE(run.crashed);
@@ -108,7 +125,22 @@ TEST(PlateFilter, AnA4PageAndBadInput) {
                                                {param_save_file("file", "big.svg", "*.svg"), param_bool("pdf", false), param_string("layers", "all"),
                                                 param_enum("view", 1, 3), param_point("direction", 0, 0, -1),
                                                 param_float("unit_mm", 1000), param_float("ratio", 1), param_enum("shading", 0, 4),
-                                                param_int("dpi", 50), param_float("width", 0.35), param_enum("page", 1, 3)})},
+                                                param_int("dpi", 50), param_float("width", 0.35), param_enum("weights", 0, 3),
+                                                param_enum("section", 0, 3), param_float("section_at", 0.5), param_enum("page", 1, 3)})},
                     {}, &dir);
   EXPECT_NE(run.output.find("Choose a smaller scale or a larger page"), std::string::npos) << run.output;
+}
+
+// The damaged meshes every filter is tested on, each with a curve layer loaded beside it (a square
+// above the mesh, from an OBJ of lines): a clear message or a plate, never a crash.
+TEST(PlateFilter, DamagedMeshesGiveAMessageOrAPlate) {
+  expect_bad_input_handled([](const std::string& name, const reliefkit::TriMesh& mesh) {
+    const std::string dir = temp_dir("plate_bad_" + name);
+    write_ply(dir + "/in.ply", mesh);
+    write_text(dir + "/square.obj", "v -0.5 -0.5 2\nv 0.5 -0.5 2\nv 0.5 0.5 2\nv -0.5 0.5 2\nl 1 2\nl 2 3\nl 3 4\nl 4 1\n");
+    write_text(dir + "/s.mlx", mlx_script({plate(dir + "/p.svg", 0, 0, "all", {1, 0, 0})}));
+    ServerRun run = run_meshlabserver({"-i", dir + "/square.obj", "-i", dir + "/in.ply", "-s", dir + "/s.mlx"});
+    if (run.status == 0) EXPECT_NE(read_text(dir + "/p.svg").find("<path"), std::string::npos) << name;
+    return run;
+  });
 }

@@ -128,15 +128,14 @@ TEST(Plate, TheSvgRendersWithTheCurvesAndTheScaleBarWhereTheyBelong) {
   }
   EXPECT_GE(top_hits, 19);
   EXPECT_EQ(buried_hits, 0);
-  // The scale bar's line: its dark run along its row, 10 mm within 1 %.
+  // The scale bar's line: the first dark run along its row (the scale's label follows after a
+  // gap), 10 mm within 1 %.
   const int row = int(p.bar_start_mm.y() * ppmm);
-  int first = -1, last = -1;
-  for (int x = 0; x < img.cols; ++x)
-    for (int dy = -1; dy <= 1; ++dy)
-      if (img.at<uchar>(row + dy, x) < 128) {
-        if (first < 0) first = x;
-        last = x;
-      }
+  auto dark = [&](int x) { return img.at<uchar>(row - 1, x) < 128 || img.at<uchar>(row, x) < 128 || img.at<uchar>(row + 1, x) < 128; };
+  int first = 0;
+  while (first < img.cols && !dark(first)) ++first;
+  int last = first;
+  while (last + 1 < img.cols && dark(last + 1)) ++last;
   const double bar_mm = (last - first + 1) / ppmm - 0.3;  // less the line's width (round caps: none; end ticks 0.3 mm)
   std::printf("scale bar rendered %.3f mm (10 mm)\n", bar_mm);
   EXPECT_NEAR(bar_mm, 10, 0.1);
@@ -153,10 +152,21 @@ TEST(Plate, BadInputIsRefusedWithAReason) {
   PlateParams small_page;
   small_page.page_width_mm = 30;
   small_page.page_height_mm = 30;
+  small_page.ratio = 1;
   EXPECT_THROW(make_plate(relief, {}, {square("s", 0, 0, 2, 2)}, above, small_page), InputError);
   PlateParams bad;
-  bad.ratio = 0;
+  bad.ratio = -1;
   EXPECT_THROW(make_plate(relief, {}, {square("s", 0, 0, 2, 2)}, above, bad), InputError);
+  auto message = [&](const PlateCurves& curves) {
+    try {
+      make_plate(relief, {}, {curves}, above, PlateParams{});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message(square("far away", 50, 0, 2, 0)).find("not this mesh's curves"), std::string::npos);
+  EXPECT_NE(message(square("buried", 0, 0, 6, -1)).find("hidden behind the surface"), std::string::npos);
   try {
     make_plate(relief, {}, {}, above, PlateParams{});
   } catch (const InputError& e) {
@@ -174,4 +184,93 @@ TEST(Plate, TheDefaultViewFacesTheRelief) {
   EXPECT_NEAR(v.direction.z(), -1, 1e-6);
   EXPECT_NEAR(v.up.y(), 1, 1e-12);
   EXPECT_NEAR(facing_view(turned).direction.z(), 1, 1e-6);
+}
+
+TEST(Plate, TheAutomaticScaleIsTheLargestStandardOneThatFitsThePage) {
+  // The block relief is 20 units across; A4 less its margins and the bar's room holds 190 x 265 mm
+  // (portrait) or 277 x 178 mm (landscape).
+  const TriMesh relief = block_relief();
+  const std::vector<PlateCurves> top{square("top", 0, 0, 1, 2)};
+  const PlateView above{Vec3(0, 0, -1), Vec3(0, 1, 0)};
+  auto scale = [&](double unit_mm, double page_w, double page_h) {
+    PlateParams p;  // ratio 0: automatic
+    p.unit_mm = unit_mm, p.page_width_mm = page_w, p.page_height_mm = page_h, p.dpi = 50;
+    return make_plate(relief, {}, top, above, p);
+  };
+  EXPECT_EQ(scale(1, 0, 0).scale_label, "5:1");     // 20 mm: 10:1 is 200 mm, too wide for either A4
+  EXPECT_EQ(scale(100, 0, 0).scale_label, "1:20");  // 2 m: 1:10 is 200 mm
+  EXPECT_EQ(scale(0.5, 0, 0).scale_label, "10:1");  // 10 mm: 10:1 is 100 mm, 20:1 200 mm
+  EXPECT_EQ(scale(1, 100, 100).scale_label, "3:1"); // a 100 mm page holds 80 x 68 mm: 3:1 is 60 mm
+  const Plate p = scale(100, 0, 0);
+  EXPECT_NEAR(p.ratio, 0.05, 1e-12);
+  EXPECT_NEAR(p.real_size_mm.x(), 2000, 1e-6);
+  EXPECT_NEAR(p.drawing_size_mm.x(), 100, 1e-6);
+  EXPECT_THROW(scale(1, 20, 20), InputError);  // no room inside the margins
+  EXPECT_THROW(scale(1e6, 0, 0), InputError);  // 20 km: not even at 1:1000
+}
+
+TEST(Plate, LineWeightsFollowTheCurvesStrengthOrTheirLayer) {
+  // Three squares of equal length and strengths 1, 2, 3 in one layer: light, middle, heavy pens.
+  const TriMesh relief = block_relief();
+  PlateCurves layer;
+  layer.name = "curves";
+  for (int k = 0; k < 3; ++k) {
+    PlateCurves s = square("s", -6 + 6 * k, 6, 1, 0);
+    const int base = int(layer.points.size());
+    layer.points.insert(layer.points.end(), s.points.begin(), s.points.end());
+    for (auto seg : s.segments) layer.segments.push_back({seg[0] + base, seg[1] + base});
+    layer.strength.insert(layer.strength.end(), s.points.size(), double(k + 1));
+  }
+  PlateParams p;
+  p.ratio = 1;
+  auto width_at = [](const Plate& plate, double x_real) {  // of the path nearest x_real (mm from the drawing's left)
+    for (const auto& path : plate.paths)
+      if (std::abs(path.points[0].x() - plate.drawing_origin_mm.x() - 10 - x_real) < 1.5) return path.width_mm;
+    return -1.0;
+  };
+  const Plate by_strength = make_plate(relief, {}, {layer}, PlateView{}, p);
+  EXPECT_NEAR(width_at(by_strength, -6), 0.25, 1e-9);
+  EXPECT_NEAR(width_at(by_strength, 0), 0.35, 1e-9);
+  EXPECT_NEAR(width_at(by_strength, 6), 0.5, 1e-9);
+  p.weights = LineWeights::one;
+  EXPECT_NEAR(width_at(make_plate(relief, {}, {layer}, PlateView{}, p), 6), 0.35, 1e-9);
+  p.weights = LineWeights::by_layer;
+  const Plate by_layer = make_plate(relief, {}, {square("a", -6, -6, 1, 0), square("b", 0, -6, 1, 0), square("c", 6, -6, 1, 0)},
+                                    PlateView{}, p);
+  EXPECT_NEAR(width_at(by_layer, -6), 0.5, 1e-9);
+  EXPECT_NEAR(width_at(by_layer, 0), 0.35, 1e-9);
+  EXPECT_NEAR(width_at(by_layer, 6), 0.25, 1e-9);
+}
+
+TEST(Plate, TheSectionsProfileIsTheSurfaceCutAlongItsLine) {
+  // From above, a vertical section through x = 0: the block's top (z = 2) on |y| < 3 and the ground
+  // (z = 0) beyond, drawn to the right of the drawing with depth across (the front, z = 2, at its
+  // left), the same rows as the drawing.
+  PlateParams p;
+  p.ratio = 2;
+  p.section.axis = SectionAxis::vertical;
+  const Plate plate = make_plate(block_relief(), {}, {square("top", 0, 0, 1, 2)}, PlateView{}, p);
+  EXPECT_NEAR(plate.width_mm, 40 + 8 + 4 + 20, 1e-6);  // the drawing, the gap, the 2 mm depth at 2:1, the margins
+  double left = 1e300, worst = 0;
+  int points = 0, dash_dot = 0;
+  for (const auto& path : plate.paths) {
+    dash_dot += path.dash_dot;
+    if (path.layer == "section")
+      for (const auto& q : path.points) left = std::min(left, q.x());
+  }
+  EXPECT_NEAR(left, plate.drawing_origin_mm.x() + 40 + 8, 1e-6);
+  for (const auto& path : plate.paths) {
+    if (path.layer != "section") continue;
+    EXPECT_NEAR(path.width_mm, 0.5, 1e-12);
+    for (const auto& q : path.points) {
+      const double y = 10 - (q.y() - plate.drawing_origin_mm.y()) / 2, z = 2 - (q.x() - left) / 2;
+      if (std::abs(std::abs(y) - 3) > 0.25) worst = std::max(worst, std::abs(z - (std::abs(y) < 3 ? 2.0 : 0.0)));
+      ++points;
+    }
+  }
+  std::printf("%d profile points, worst %.2g units off the surface\n", points, worst);
+  EXPECT_GT(points, 100);
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_EQ(dash_dot, 1);
+  EXPECT_GT(plate.section_segments, 100);
 }

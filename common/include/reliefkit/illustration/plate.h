@@ -24,23 +24,46 @@ struct PlateView {
 /// axis when the view runs along y), as MeshLab shows the scan by default.
 PlateView facing_view(const TriMesh& mesh);
 
-/// Curves to draw: points and segments (pairs of point indices), one stroke width for the layer.
+/// Curves to draw: points and segments (pairs of point indices), the layer's stroke width and,
+/// optionally, each point's strength (the curve filters' vertex quality) for the line weights.
 struct PlateCurves {
   std::string name;
   std::vector<Vec3> points;
   std::vector<std::array<int, 2>> segments;
   double width_mm = 0.35;
+  std::vector<double> strength;  // per point, or empty
+};
+
+/// How the lines' widths vary: the illustrator's two or three pen weights.
+enum class LineWeights {
+  by_strength,  // per curve: the strongest third of the curves' length 0.5/0.35 of the width, the weakest 0.25/0.35
+  by_layer,     // the first layer 0.5/0.35 of the width, the second the width, the others 0.25/0.35
+  one           // every line the width
+};
+
+/// A cross-section: the mesh cut by the plane through a vertical (or horizontal) line of the
+/// drawing, its profile drawn beside the drawing (to the right; below for a horizontal one) at
+/// the same scale, and the line marked dash-dot on the drawing.
+enum class SectionAxis { none, vertical, horizontal };
+struct PlateSection {
+  SectionAxis axis = SectionAxis::none;
+  double at = 0.5;  // the line's place: a fraction of the drawing's width (height), from its left (top)
+  double width_mm = 0.5;  // of the profile
 };
 
 struct PlateParams {
   double unit_mm = 1;         // one unit of the mesh in millimetres (its scanner's unit)
-  double ratio = 1;           // drawn size / real size: 1 for 1:1, 2 for 2:1, 0.5 for 1:2
+  double ratio = 0;           // drawn size / real size: 1 for 1:1, 2 for 2:1, 0.5 for 1:2; 0: automatic
+                              // (the largest standard scale at which the plate fits the page, A4 when fitted)
   double dpi = 300;           // the shading raster's resolution on the page
   double margin_mm = 10;      // around the drawing; the scale bar sits in the bottom margin
   double page_width_mm = 0;   // 0: the drawing and its margins; else a fixed page (A4: 210 x 297)
   double page_height_mm = 0;
   double hidden_px = 1.5;     // a curve point more than this behind the surface (in raster pixels) is hidden
   double simplify_px = 0.25;  // polylines simplified within this many raster pixels
+  LineWeights weights = LineWeights::by_strength;
+  PlateSection section;
+  Progress progress = nullptr;
 };
 
 /// A visible piece of curve on the page (millimetres, y down as in SVG and PDF).
@@ -48,6 +71,7 @@ struct PlatePath {
   std::vector<Vec2> points;
   double width_mm = 0.35;
   std::string layer;
+  bool dash_dot = false;  // the section's line on the drawing
 };
 
 struct Plate {
@@ -60,12 +84,17 @@ struct Plate {
   double bar_length_mm = 0;
   std::string bar_label;         // "10 mm"
   std::string scale_label;       // "1:1"
+  double ratio = 1;              // the scale drawn (params.ratio, or the one chosen)
+  Vec2 real_size_mm{0, 0};       // the object's extent in the view at params.unit_mm: a check of the unit
+  long section_segments = 0;     // of the profile (section paths are in `paths`, layer "section")
   long visible_segments = 0, hidden_segments = 0;
+  long outside_segments = 0;     // off the mesh's drawing (another mesh's curves): not drawn
 };
 
 /// The plate of `mesh` shaded with `grey` (per vertex, 0 black .. 1 white; empty: Lambertian from
 /// the view) and the curve layers. Throws InputError for a view with no area, no curve to draw, a
-/// page too small for the drawing at this scale, or parameters out of range.
+/// page too small for the drawing at this scale, a section line that misses the mesh, curves
+/// that are all hidden or all off the mesh's drawing, or parameters out of range.
 Plate make_plate(const TriMesh& mesh, const std::vector<double>& grey, const std::vector<PlateCurves>& layers,
                  const PlateView& view, const PlateParams& params);
 

@@ -1,0 +1,78 @@
+// ReliefKit — the plate's cross-section: the mesh cut by a plane through a line of the drawing,
+// its profile drawn beside the drawing at the same scale. See plate_raster.h.
+#include <algorithm>
+#include <cmath>
+
+#include "plate_raster.h"
+#include "reliefkit/base/zero_crossings.h"
+
+namespace reliefkit {
+namespace {
+
+constexpr double kGapMm = 8;  // between the drawing and its profile
+
+bool vertical(const PlateParams& p) { return p.section.axis == SectionAxis::vertical; }
+
+// The cut: zero crossings of the signed distance to the plane (a field the same in every
+// direction, so every face is consistent and no point is moved).
+Polylines cut(const TriMesh& mesh, const Vec3& normal, double offset) {
+  const size_t n = mesh.vertices.size();
+  std::vector<double> distance(n);
+  for (size_t i = 0; i < n; ++i) distance[i] = mesh.vertices[i].dot(normal) - offset;
+  DirectionalField field;
+  field.direction.assign(n, normal);
+  field.value = distance;
+  field.value_along = [&distance](int v, const Vec3&) { return distance[size_t(v)]; };
+  return extract_zero_crossings(mesh, std::vector<Vec3>(n, normal), field);
+}
+
+// A point of the cut on the page: depth across (front at the left) beside a vertical section's
+// drawing, depth down (front at the top) below a horizontal one's.
+Vec2 profile_point(const Vec3& p, const PageFrame& f, const PlateParams& params, const Vec2& origin) {
+  const Vec2 on_drawing = f.to_mm(p);
+  const double depth_mm = (f.depth(p) - f.nearest) * f.mm_per_unit;
+  return origin + (vertical(params) ? Vec2(depth_mm, on_drawing.y()) : Vec2(on_drawing.x(), depth_mm));
+}
+
+// The section's line across the drawing, 2 mm beyond it at both ends.
+PlatePath section_line(const Plate& plate, const PlateParams& params) {
+  const Vec2 o = plate.drawing_origin_mm, size = plate.drawing_size_mm;
+  PlatePath line{{}, 0.2, "section line", true};
+  if (vertical(params)) {
+    const double x = o.x() + params.section.at * size.x();
+    line.points = {Vec2(x, o.y() - 2), Vec2(x, o.y() + size.y() + 2)};
+  } else {
+    const double y = o.y() + params.section.at * size.y();
+    line.points = {Vec2(o.x() - 2, y), Vec2(o.x() + size.x() + 2, y)};
+  }
+  return line;
+}
+}  // namespace
+
+Vec2 section_room_mm(const PageFrame& frame, const PlateParams& params) {
+  if (params.section.axis == SectionAxis::none) return Vec2::Zero();
+  const double depth_mm = (frame.farthest - frame.nearest) * frame.mm_per_unit + kGapMm;
+  return vertical(params) ? Vec2(depth_mm, 0) : Vec2(0, depth_mm);
+}
+
+void add_section(Plate& plate, const TriMesh& mesh, const PageFrame& frame, const PlateParams& params) {
+  if (params.section.axis == SectionAxis::none) return;
+  const double at = params.section.at, per_mm = 1 / frame.mm_per_unit;
+  const Vec3 normal = vertical(params) ? frame.right : frame.up;
+  const double offset = vertical(params) ? frame.left + at * plate.drawing_size_mm.x() * per_mm
+                                         : frame.top - at * plate.drawing_size_mm.y() * per_mm;
+  const Polylines profile = cut(mesh, normal, offset);
+  if (profile.segments.empty())
+    throw InputError("The section's line misses the mesh: place it across the object (0.5 is through the middle).");
+  const Vec2 origin = plate.drawing_origin_mm + (vertical(params) ? Vec2(plate.drawing_size_mm.x() + kGapMm, 0)
+                                                                  : Vec2(0, plate.drawing_size_mm.y() + kGapMm));
+  for (const auto& chain : profile.chains()) {
+    PlatePath path{{}, params.section.width_mm, "section", false};
+    for (int k : chain) path.points.push_back(profile_point(profile.points[size_t(k)], frame, params, origin));
+    plate.paths.push_back(std::move(path));
+  }
+  plate.section_segments = long(profile.segments.size());
+  plate.paths.push_back(section_line(plate, params));
+}
+
+}  // namespace reliefkit
