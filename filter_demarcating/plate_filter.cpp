@@ -18,15 +18,16 @@ namespace {
 
 const char* kPlateInfo =
     "Writes an <b>illustration plate</b> of the current mesh for a report: an orthographic view at the "
-    "scale you state (1:1, 2:1...), the curve layers as black vector lines (the parts behind the "
-    "surface removed), the surface's shading as grey under them, a scale bar in millimetres and the "
-    "scale. Output: an SVG file and, optionally, a PDF beside it (same name), at the page size asked "
-    "— ready for a report or for further work in Inkscape or Illustrator.<br><br>"
+    "scale you state (1:1, 2:1...) or the largest standard one that fits A4, the curve layers as black "
+    "vector lines in three pen weights (the parts behind the surface removed), the surface's shading "
+    "as grey under them, a cross-section's profile beside the drawing if you ask, a scale bar in "
+    "millimetres and the scale. Output: an SVG file and, optionally, a PDF beside it (same name), at "
+    "the page size asked — ready for a report or for further work in Inkscape or Illustrator.<br><br>"
     "<b>Curve layers</b>: every layer of curves (edges without faces: Demarcating Curves, Relief "
     "Edges, Ridges and Valleys...), or the ones you name. <b>Shading</b>: the mesh's vertex colours "
     "(run <i>Prominent Coloring</i> or <i>Curvature Shading</i> first: they read best), or light "
     "from the top left. <b>Mesh unit</b>: how many millimetres one unit of the scan is (1 for scans "
-    "in mm).";
+    "in mm); the log gives the object's size at that unit — check it.";
 
 const QStringList kViews{"Facing the relief (its least extent)", "From +Z (MeshLab's default view)", "Given direction"};
 const QStringList kShadings{"Automatic (vertex colours if any, else light)", "Vertex colours", "Light from the top left",
@@ -46,7 +47,7 @@ void plate_parameters(const MeshModel&, RichParameterList& par) {
                                                    "normals face (a coin, a plaque, a sherd's exterior)."));
   par.addParam(RichDirection("direction", vcg::Point3f(0, 0, -1), "View direction (given)", "Looking along this direction."));
   par.addParam(RichFloat("unit_mm", 1.0f, "Mesh unit (mm)", "Millimetres per unit of the mesh: 1 for a scan in mm, 10 for cm, 25.4 for inches."));
-  par.addParam(RichFloat("ratio", 0.0f, "Scale (drawn / real)",
+  par.addParam(RichFloat("ratio", 0.0f, "Scale (drawn / real, 0: auto)",
                          "1 for 1:1, 2 for 2:1, 0.5 for 1:2. 0: automatic, the largest standard scale (5:1, 2:1, 1:1, "
                          "1:2...) at which the plate fits the page (A4 when the page fits the drawing)."));
   par.addParam(RichEnum("shading", 0, kShadings, "Shading", "The grey under the lines."));
@@ -108,7 +109,7 @@ void write_pdf(const Plate& plate, const QString& path);
 PlateParams plate_params(FilterCall& call) {
   PlateParams p;
   p.unit_mm = read_float(call, "unit_mm", "Mesh unit (mm)", 1e-9, 1e9);
-  p.ratio = read_float(call, "ratio", "Scale (drawn / real)", 0, 1000);
+  p.ratio = read_float(call, "ratio", "Scale (drawn / real, 0: auto)", 0, 1000);
   p.dpi = read_int(call, "dpi", "Shading resolution (dpi)", 50, 2400);
   const int page = read_enum(call, "page", "Page", kPages.size());
   if (page > 0) p.page_width_mm = page == 1 ? 210 : 297, p.page_height_mm = page == 1 ? 297 : 210;

@@ -19,11 +19,13 @@ Polylines cut(const TriMesh& mesh, const Vec3& normal, double offset) {
   const size_t n = mesh.vertices.size();
   std::vector<double> distance(n);
   for (size_t i = 0; i < n; ++i) distance[i] = mesh.vertices[i].dot(normal) - offset;
-  DirectionalField field;
-  field.direction.assign(n, normal);
-  field.value = distance;
+  const std::vector<Vec3> same(n, normal);  // every vertex's direction, and its normal (unused: no face is inconsistent)
+  DirectionalFieldView field;
+  field.direction = same.data();
+  field.value = distance.data();
+  field.size = n;
   field.value_along = [&distance](int v, const Vec3&) { return distance[size_t(v)]; };
-  return extract_zero_crossings(mesh, std::vector<Vec3>(n, normal), field);
+  return extract_zero_crossings(mesh, same, field);
 }
 
 // A point of the cut on the page: depth across (front at the left) beside a vertical section's
