@@ -3,12 +3,18 @@
 // every file's record (status, the filters run with the same parameter names and values, the
 // layers written and their vertex, face and edge counts), and every layer file (positions within
 // 1e-5 of the layer's size, each per-vertex property — quality, colour — within 1e-4 of its range,
-// edges the same). Prints what differs; exit status 0 when nothing does.
+// edges the same), and every SVG plate in a file's outputs folder (the same numbers — page, paths,
+// scale bar — within 1e-3 mm; the embedded shading left out). Prints what differs; exit status 0
+// when nothing does.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <cctype>
+#include <cstdlib>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "mesh_files.h"
@@ -20,6 +26,7 @@ using namespace reliefkit::batch;
 namespace {
 
 int g_differences = 0;
+int g_plates = 0;
 void differ(const std::string& what) {
   std::printf("DIFFERENT: %s\n", what.c_str());
   ++g_differences;
@@ -56,6 +63,39 @@ void compare_layer(const std::string& name, const fs::path& a, const fs::path& b
   }
 }
 
+// The numbers of an SVG plate — its page, paths and scale bar — without the embedded shading.
+std::vector<double> svg_numbers(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string svg = text.str();
+  for (size_t at = svg.find("<image"); at != std::string::npos; at = svg.find("<image", at))
+    svg.erase(at, svg.find('>', at) - at + 1);  // std::regex overflows its stack on the base64
+  std::vector<double> values;
+  for (const char* c = svg.c_str(); *c;) {
+    const bool starts = std::isdigit(static_cast<unsigned char>(*c)) || (*c == '-' && std::isdigit(static_cast<unsigned char>(c[1])));
+    char* end = nullptr;
+    if (starts) values.push_back(std::strtod(c, &end));
+    c = starts && end > c ? end : c + 1;
+  }
+  return values;
+}
+
+void compare_plates(const std::string& name, const fs::path& a, const fs::path& b) {
+  if (!fs::is_directory(a)) return;
+  for (const auto& entry : fs::directory_iterator(a)) {
+    if (entry.path().extension() != ".svg") continue;
+    const fs::path other = b / entry.path().filename();
+    if (!fs::exists(other)) { differ(name + ": " + entry.path().filename().string() + " only in the first"); continue; }
+    const std::vector<double> x = svg_numbers(entry.path()), y = svg_numbers(other);
+    ++g_plates;
+    if (x.size() != y.size()) { differ(name + ": the plates have " + std::to_string(x.size()) + " and " + std::to_string(y.size()) + " numbers"); continue; }
+    double worst = 0;
+    for (size_t k = 0; k < x.size(); ++k) worst = std::max(worst, std::abs(x[k] - y[k]));
+    if (worst > 1e-3) differ(name + ": the plates differ by " + std::to_string(worst) + " mm");
+  }
+}
+
 // "name=value" with a path value reduced to its file name: the two runs read the same inputs
 // through different folders (the Debian 13 root sees the tree elsewhere).
 std::vector<std::string> comparable(std::vector<std::string> parameters) {
@@ -87,6 +127,8 @@ void compare_record(const FileResult& x, const FileResult& y, const fs::path& a,
     }
     compare_layer(f + " / " + lx.layer, a / lx.file, b / ly.file);
   }
+  const fs::path outputs = fs::path(f).replace_extension();
+  compare_plates(f, a / outputs, b / outputs);
 }
 }  // namespace
 
@@ -108,6 +150,6 @@ int main(int argc, char** argv) {
   }
   size_t layers = 0;
   for (const auto& r : x) layers += r.outputs.size();
-  std::printf("%zu files, %zu layers compared: %d difference(s)\n", x.size(), layers, g_differences);
+  std::printf("%zu files, %zu layers, %d plates compared: %d difference(s)\n", x.size(), layers, g_plates, g_differences);
   return g_differences == 0 ? 0 : 1;
 }

@@ -7,9 +7,11 @@ batch="$1"; inputs="$2"; out="$3"
 rm -rf "$out"; mkdir -p "$out"
 export OMP_WAIT_POLICY=PASSIVE
 status=0
-run() {  # slug, input folder, extensions, filter, extra arguments
+run() {  # slug, input folder, extensions, filter (or --script FILE.mlx), extra arguments
   local slug="$1" folder="$2" ext="$3" filter="$4"; shift 4
-  "$batch" --filter "$filter" --extensions "$ext" "$@" "$inputs/$folder" "$out/$slug" > "$out/$slug.log" 2>&1
+  local recipe=(--filter "$filter")
+  [ "$filter" = --script ] && { recipe=(--script "$1"); shift; }
+  "$batch" "${recipe[@]}" --extensions "$ext" "$@" "$inputs/$folder" "$out/$slug" > "$out/$slug.log" 2>&1
   local rc=$?
   [ $rc -le 1 ] || { echo "reliefkit-batch failed ($rc) for $filter:"; tail -5 "$out/$slug.log"; status=1; }
 }
@@ -23,4 +25,7 @@ run line_drawing_to_curves drawing png "Line Drawing to Curves" --param "drawing
 run relief_from_line_drawing drawing png "Relief from Line Drawing" --param "drawing={input}"
 run base_from_drawing_silhouette figure png "Base from Drawing Silhouette" --param "drawing={input}"
 run vessel_from_profile_drawing profile png "Vessel from Profile Drawing" --param "drawing={input}"
+# The illustration plate (files, not layers): the example script — Demarcating Curves, Prominent
+# Coloring, Export Illustration Plate (its SVG in each file's outputs folder).
+run illustration_plate mesh ply --script "$(dirname "${BASH_SOURCE[0]}")/../../examples/illustration_plate.mlx"
 exit $status
