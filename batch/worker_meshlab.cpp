@@ -72,10 +72,28 @@ RichParameterList parameters_of(MeshLabSession& ml, MeshDocument& doc, const Ste
   return list;
 }
 
+// A layer's name as a file name: "coin – demarcating curves" -> "coin-demarcating_curves".
+std::string safe_name(QString label) {
+  label.replace(QString::fromUtf8(" \u2013 "), "-");
+  for (QChar& c : label)
+    if (c == ' ') c = '_';
+    else if (!(c.isLetterOrNumber() || c == '-' || c == '_' || c == '.')) c = '-';
+  return label.isEmpty() ? std::string("layer") : label.toStdString();
+}
+
+// Layers a filter made (a relief from a drawing) have no file; each is given one in the outputs
+// folder, so that what a later filter writes "beside the mesh's file" goes there too.
+void place_unnamed_layers(MeshDocument& doc, const WorkerRequest& request) {
+  for (MeshModel* mm : layers(doc))
+    if (mm->fullName().isEmpty())
+      mm->setFileName(QString::fromStdString((outputs_folder(request) / (safe_name(mm->label()) + ".ply")).string()));
+}
+
 // One step applied, its log printed and its warnings kept; false with `error` set when it fails.
 bool apply_step(MeshLabSession& ml, MeshDocument& doc, const Step& step, const WorkerRequest& request, FileResult& result) {
   if (!ml.has_filter(step.filter))
     throw std::runtime_error("no filter is called \"" + step.filter.toStdString() + "\" (names are exact; --list-filters)");
+  place_unnamed_layers(doc, request);
   const RichParameterList params = parameters_of(ml, doc, step, request);
   g_filter = step.filter.toStdString();
   g_last_percent = -100;
@@ -95,15 +113,6 @@ bool apply_step(MeshLabSession& ml, MeshDocument& doc, const Step& step, const W
   std::fflush(stdout);
   if (!ok) result.error = g_filter + ": " + error;
   return ok;
-}
-
-// A layer's name as a file name: "coin – demarcating curves" -> "coin-demarcating_curves".
-std::string safe_name(QString label) {
-  label.replace(QString::fromUtf8(" \u2013 "), "-");
-  for (QChar& c : label)
-    if (c == ' ') c = '_';
-    else if (!(c.isLetterOrNumber() || c == '-' || c == '_' || c == '.')) c = '-';
-  return label.isEmpty() ? std::string("layer") : label.toStdString();
 }
 
 // One layer written beside the others of its file: <output>/<relative path without extension>/<layer>.<ext>.

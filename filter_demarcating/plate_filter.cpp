@@ -133,8 +133,13 @@ PlateView plate_view(FilterCall& call, const View& view) {
 // The SVG file asked for (a relative name or none: beside the mesh's file), written.
 QString write_svg(FilterCall& call, const Plate& plate) {
   QString svg = call.params.getSaveFileName("file").trimmed();
-  if (svg.isEmpty()) svg = QFileInfo(call.mesh().fullName()).completeBaseName() + "-plate.svg";
-  if (QFileInfo(svg).isRelative()) svg = call.mesh().pathName() + "/" + svg;
+  if (svg.isEmpty() || QFileInfo(svg).isRelative()) {
+    if (call.mesh().fullName().isEmpty())
+      throw InputError(qUtf8Printable("The layer \"" + call.mesh().label() + "\" has no file (a filter made it), so there is "
+                                      "no folder beside it for the plate: give the plate file a full path, or save the layer first."));
+    if (svg.isEmpty()) svg = QFileInfo(call.mesh().fullName()).completeBaseName() + "-plate.svg";
+    svg = call.mesh().pathName() + "/" + svg;
+  }
   QFile out(svg);
   if (!out.open(QIODevice::WriteOnly) || out.write(QByteArray::fromStdString(plate_svg(plate))) < 0)
     throw InputError(qUtf8Printable("The plate could not be written to " + svg + " (check the folder exists and is writable)."));

@@ -199,6 +199,19 @@ TEST(BatchTool, APlateForEveryScan) {
   EXPECT_EQ(d.status, 0) << d.output;
   EXPECT_TRUE(fs::exists(dir + "/out2/torus/torus-plate.svg")) << d.output;
   EXPECT_FALSE(fs::exists(scans + "/b/torus-plate.svg"));
+  // A relief a filter made from a drawing has no file of its own: its plate goes to the outputs
+  // folder too.
+  fs::create_directories(dir + "/drawings");
+  fs::copy_file(rktest::source_dir() + "/examples/data/nested_drawing.png", dir + "/drawings/nested.png");
+  const std::string relief_script = dir + "/relief.mlx";
+  std::ofstream(relief_script) << "<!DOCTYPE FilterScript>\n<FilterScript>\n"
+                               << rktest::mlx_filter("Relief from Line Drawing", {rktest::param_file("drawing", "{input}")})
+                               << rktest::mlx_filter("Export Illustration Plate", {}) << "</FilterScript>\n";
+  const BatchRun rel = batch({"--script", relief_script, "--save", "none", "--extensions", "png", dir + "/drawings", dir + "/out3"});
+  EXPECT_EQ(rel.status, 0) << rel.output;
+  int plates = 0;
+  for (const auto& e : fs::directory_iterator(dir + "/out3/nested")) plates += e.path().extension() == ".svg";
+  EXPECT_EQ(plates, 1) << rel.output;
 }
 
 TEST(BatchTool, AnObjMeshLabsImporterStopsOnSaysWhatToDo) {
