@@ -59,6 +59,8 @@ void plate_parameters(const MeshModel&, RichParameterList& par) {
   par.addParam(RichEnum("section", 0, kSections, "Cross-section",
                         "The profile of the object cut along a line of the drawing, drawn beside it at the same scale; "
                         "the line marked dash-dot."));
+  par.addParam(RichBool("section_fill", true, "Fill the section", "A closed profile (a closed mesh cut through: a sherd, a "
+                                                                 "tool) filled black, as pottery sections are drawn."));
   par.addParam(RichFloat("section_at", 0.5f, "Section place", "Where the section's line crosses the drawing: a fraction of "
                                                               "its width (vertical) or height (horizontal); 0.5 the middle."));
   par.addParam(RichEnum("page", 0, kPages, "Page", "Fit: the drawing with 10 mm margins. A4: the drawing centred on the page."));
@@ -116,6 +118,7 @@ PlateParams plate_params(FilterCall& call) {
   p.weights = LineWeights(read_enum(call, "weights", "Line weights", kWeights.size()));
   p.section.axis = SectionAxis(read_enum(call, "section", "Cross-section", kSections.size()));
   p.section.at = read_float(call, "section_at", "Section place", 0, 1);
+  p.section.fill = read_bool(call, "section_fill", "Fill the section");
   return p;
 }
 
@@ -196,6 +199,7 @@ void write_pdf(const Plate& plate, const QString& path) {
   for (const auto& path_ : plate.paths) {
     QPainterPath line(QPointF(path_.points[0].x(), path_.points[0].y()));
     for (size_t i = 1; i < path_.points.size(); ++i) line.lineTo(path_.points[i].x(), path_.points[i].y());
+    if (path_.filled) line.closeSubpath(), painter.fillPath(line, Qt::black);
     QPen pen(Qt::black, path_.width_mm, Qt::SolidLine, path_.dash_dot ? Qt::FlatCap : Qt::RoundCap, Qt::RoundJoin);
     if (path_.dash_dot) pen.setDashPattern({3 / path_.width_mm, 1 / path_.width_mm, 0.5 / path_.width_mm, 1 / path_.width_mm});
     painter.setPen(pen);

@@ -41,6 +41,7 @@ if [ -f "$drawing" ]; then
   <Param type="RichFloat" value="0.35" name="width"/>
   <Param type="RichEnum" value="1" enum_cardinality="3" name="weights"/>
   <Param type="RichEnum" value="0" enum_cardinality="3" name="section"/>
+  <Param type="RichBool" value="true" name="section_fill"/>
   <Param type="RichFloat" value="0.5" name="section_at"/>
   <Param type="RichEnum" value="0" enum_cardinality="3" name="page"/>
  </filter>
@@ -64,7 +65,7 @@ sleep 2.5
 shot dialog.png
 EOT
 (cd "$work" && "$here/scripts/gui-shots.sh" "$work/dialog.txt" -- "$work/coin.ply" > /dev/null)
-convert "$work/dialog.png" -crop 556x722+0+0 +repage "$here/docs/img/plate_dialog.png"
+convert "$work/dialog.png" -crop 556x752+0+0 +repage "$here/docs/img/plate_dialog.png"
 
 # The example at its defaults (the mesh unit 1 mm, the scale automatic) on every scan of
 # ../shared/data (the OBJs converted to PLY: MeshLab 2020.09's OBJ importer aborts on them) and on

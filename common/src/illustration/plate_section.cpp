@@ -69,7 +69,7 @@ void add_section(Plate& plate, const TriMesh& mesh, const PageFrame& frame, cons
   const Vec2 origin = plate.drawing_origin_mm + (vertical(params) ? Vec2(plate.drawing_size_mm.x() + kGapMm, 0)
                                                                   : Vec2(0, plate.drawing_size_mm.y() + kGapMm));
   for (const auto& chain : profile.chains()) {
-    PlatePath path{{}, params.section.width_mm, "section", false};
+    PlatePath path{{}, params.section.width_mm, "section", false, params.section.fill && chain.size() > 3 && chain.front() == chain.back()};
     for (int k : chain) path.points.push_back(profile_point(profile.points[size_t(k)], frame, params, origin));
     plate.paths.push_back(std::move(path));
   }

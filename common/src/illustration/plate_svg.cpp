@@ -45,9 +45,10 @@ void write_paths(std::ostringstream& svg, const Plate& p) {
       layer = path.layer;
       svg << " <g id=\"" << escaped(layer) << "\" fill=\"none\" stroke=\"black\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
     }
-    svg << "  <path stroke-width=\"" << path.width_mm << (path.dash_dot ? "\" stroke-dasharray=\"3 1 0.5 1" : "") << "\" d=\"M";
+    svg << "  <path stroke-width=\"" << path.width_mm << (path.dash_dot ? "\" stroke-dasharray=\"3 1 0.5 1" : "")
+        << (path.filled ? "\" fill=\"black" : "") << "\" d=\"M";
     for (size_t k = 0; k < path.points.size(); ++k) svg << (k ? " " : "") << path.points[k].x() << ',' << path.points[k].y();
-    svg << "\"/>\n";
+    svg << (path.filled ? " Z" : "") << "\"/>\n";
   }
   if (layer != "\x01") svg << " </g>\n";
 }

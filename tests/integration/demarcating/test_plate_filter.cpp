@@ -36,7 +36,7 @@ std::string plate(const std::string& file, int view, int page, const std::string
                     {param_save_file("file", file, "*.svg"), param_bool("pdf", true), param_string("layers", layers),
                      param_enum("view", view, 3), param_point("direction", 0, 0, -1), param_float("unit_mm", o.unit_mm),
                      param_float("ratio", o.ratio), param_enum("shading", 0, 4), param_int("dpi", 150), param_float("width", 0.35),
-                     param_enum("weights", 0, 3), param_enum("section", o.section, 3), param_float("section_at", 0.5),
+                     param_enum("weights", 0, 3), param_enum("section", o.section, 3), param_bool("section_fill", true), param_float("section_at", 0.5),
                      param_enum("page", page, 3)});
 }
 
@@ -126,7 +126,7 @@ TEST(PlateFilter, AnA4PageAndBadInput) {
                                                 param_enum("view", 1, 3), param_point("direction", 0, 0, -1),
                                                 param_float("unit_mm", 1000), param_float("ratio", 1), param_enum("shading", 0, 4),
                                                 param_int("dpi", 50), param_float("width", 0.35), param_enum("weights", 0, 3),
-                                                param_enum("section", 0, 3), param_float("section_at", 0.5), param_enum("page", 1, 3)})},
+                                                param_enum("section", 0, 3), param_bool("section_fill", true), param_float("section_at", 0.5), param_enum("page", 1, 3)})},
                     {}, &dir);
   EXPECT_NE(run.output.find("Choose a smaller scale or a larger page"), std::string::npos) << run.output;
 }

@@ -274,3 +274,27 @@ TEST(Plate, TheSectionsProfileIsTheSurfaceCutAlongItsLine) {
   EXPECT_EQ(dash_dot, 1);
   EXPECT_GT(plate.section_segments, 100);
 }
+
+TEST(Plate, AClosedMeshsSectionIsAFilledLoop) {
+  // A unit sphere cut through its centre: one closed profile, filled, a circle of radius 1 (2 mm
+  // at 2:1) beside the drawing; unfilled when asked.
+  PlateParams p;
+  p.ratio = 2;
+  p.section.axis = SectionAxis::horizontal;
+  const TriMesh sphere = rktest::sphere(1, 5);
+  const Plate plate = make_plate(sphere, {}, {square("above", 0, 0, 0.5, 2)}, PlateView{}, p);
+  int filled = 0;
+  double worst = 0;
+  for (const auto& path : plate.paths) {
+    if (path.layer != "section") continue;
+    filled += path.filled;
+    // The profile below the drawing: x as the drawing's, depth down from the sphere's front (z = 1).
+    const Vec2 centre = plate.drawing_origin_mm + Vec2(2, plate.drawing_size_mm.y() + 8 + 2);
+    for (const auto& q : path.points) worst = std::max(worst, std::abs((q - centre).norm() - 2));
+  }
+  std::printf("the profile within %.4f mm of its 2 mm circle\n", worst);
+  EXPECT_EQ(filled, 1);
+  EXPECT_LT(worst, 0.01);
+  p.section.fill = false;
+  for (const auto& path : make_plate(sphere, {}, {square("above", 0, 0, 0.5, 2)}, PlateView{}, p).paths) EXPECT_FALSE(path.filled);
+}

@@ -49,6 +49,7 @@ struct PlateSection {
   SectionAxis axis = SectionAxis::none;
   double at = 0.5;  // the line's place: a fraction of the drawing's width (height), from its left (top)
   double width_mm = 0.5;  // of the profile
+  bool fill = true;       // closed profiles (a closed mesh cut through) filled black
 };
 
 struct PlateParams {
@@ -72,6 +73,7 @@ struct PlatePath {
   double width_mm = 0.35;
   std::string layer;
   bool dash_dot = false;  // the section's line on the drawing
+  bool filled = false;    // a closed profile of the section, filled black (the pottery convention)
 };
 
 struct Plate {
