@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 
@@ -141,6 +142,9 @@ void save_layers(MeshLabSession& ml, MeshDocument& doc, size_t layers_before, co
 }
 
 void run_recipe(MeshLabSession& ml, const WorkerRequest& request, FileResult& result) {
+  // Files the filters derive from their inputs (a drawing's interpretation file) go to the
+  // outputs folder, not beside the input (derived_file_folder in common/meshlab/filter_spec.h).
+  setenv("RELIEFKIT_OUTPUT_FOLDER", outputs_folder(request).c_str(), 1);
   MeshDocument doc;
   const QString file = QString::fromStdString(request.file);
   if (ml.can_read(QFileInfo(file).suffix())) {

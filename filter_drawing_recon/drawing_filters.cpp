@@ -348,16 +348,16 @@ ReliefLayers relief_on_grid(FilterCall& call, const Drawing& d, const DrawingInt
   return out;
 }
 
-// The interpretation file beside the image (only when none was given: the user's file stays as
-// written). Returns its path, "" when it was not written.
+// The interpretation file beside the image (in reliefkit-batch: in the outputs folder), only when
+// none was given: the user's file stays as written. Returns its path, "" when it was not written.
 QString write_interpretation_file(FilterCall& call, const Drawing& d, const DrawingInterpretation& di) {
   const QFileInfo fi(d.path);
-  const QString path = fi.absoluteDir().filePath(fi.completeBaseName() + ".interpretation.json");
+  const QString path = QDir(derived_file_folder(d.path)).filePath(fi.completeBaseName() + ".interpretation.json");
   QFile f(path);
   const std::string text = interpretation_to_json(fi.fileName().toStdString(), d.curves, d.detection, di);
   if (f.open(QIODevice::WriteOnly | QIODevice::Truncate) && f.write(text.data(), qint64(text.size())) == qint64(text.size()))
     return path;
-  call.log("The interpretation file could not be written beside the drawing (" + path + "): the folder is not writable.");
+  call.log("The interpretation file could not be written (" + path + "): the folder is not writable.");
   return QString();
 }
 

@@ -1,6 +1,7 @@
 // ReliefKit — the run every filter shares, for both MeshLab adapters. See filter_spec.h.
 #include <rk_plugin.h>  // the adapter of the MeshLab configured (RELIEFKIT_MESHLAB_API)
 
+#include <QFileInfo>
 #include <algorithm>
 #include <cstdlib>
 #include <exception>
@@ -51,6 +52,11 @@ QString run_filter(const FilterSpec& s, FilterCall& call) {
   } catch (const std::exception& e) {
     return QString("internal error: ") + e.what();
   }
+}
+
+QString derived_file_folder(const QString& input) {
+  const QString batch_folder = qEnvironmentVariable("RELIEFKIT_OUTPUT_FOLDER");
+  return batch_folder.isEmpty() ? QFileInfo(input).absolutePath() : batch_folder;
 }
 
 }  // namespace reliefkit::ml

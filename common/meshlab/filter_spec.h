@@ -54,4 +54,9 @@ int post_conditions(const FilterSpec& s);
 /// verbatim, "not enough memory for this mesh.", or "internal error: ..." for anything else).
 QString run_filter(const FilterSpec& s, FilterCall& call);
 
+/// The folder for a file a filter derives from its input file (a drawing's interpretation file):
+/// the input's own, or $RELIEFKIT_OUTPUT_FOLDER when set — reliefkit-batch sets it to each file's
+/// outputs folder, so that a collection is never written to.
+QString derived_file_folder(const QString& input);
+
 }  // namespace reliefkit::ml

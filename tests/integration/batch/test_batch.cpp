@@ -212,6 +212,9 @@ TEST(BatchTool, APlateForEveryScan) {
   int plates = 0;
   for (const auto& e : fs::directory_iterator(dir + "/out3/nested")) plates += e.path().extension() == ".svg";
   EXPECT_EQ(plates, 1) << rel.output;
+  // The relief's interpretation file, written beside its drawing in MeshLab, is an output here.
+  EXPECT_TRUE(fs::exists(dir + "/out3/nested/nested.interpretation.json"));
+  EXPECT_FALSE(fs::exists(dir + "/drawings/nested.interpretation.json"));
 }
 
 TEST(BatchTool, AnObjMeshLabsImporterStopsOnSaysWhatToDo) {
