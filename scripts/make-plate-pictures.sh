@@ -66,6 +66,34 @@ shot dialog.png
 EOT
 (cd "$work" && "$here/scripts/gui-shots.sh" "$work/dialog.txt" -- "$work/coin.ply" > /dev/null)
 convert "$work/dialog.png" -crop 556x752+0+0 +repage "$here/docs/img/plate_dialog.png"
+# The same from the menus: Demarcating Curves applied, then the plate at its defaults; MeshLab's
+# layers and log after it (the plate beside coin.ply).
+cat > "$work/apply.txt" <<'EOT'
+sleep 6
+click 1258 46
+sleep 1
+type Demarcating Curves
+sleep 1.5
+key Down
+key Return
+sleep 2.5
+click 414 577
+sleep 10
+click 142 577
+sleep 1
+click 1258 46
+sleep 1
+type Export Illustration Plate
+sleep 1.5
+key Down
+key Return
+sleep 2.5
+click 414 733
+sleep 6
+shot applied.png
+EOT
+(cd "$work" && "$here/scripts/gui-shots.sh" "$work/apply.txt" -- "$work/coin.ply" > /dev/null)
+convert "$work/applied.png" -resize 75% "$here/docs/img/plate_gui_applied.png"
 
 # The example at its defaults (the mesh unit 1 mm, the scale automatic) on every scan of
 # ../shared/data (the OBJs converted to PLY: MeshLab 2020.09's OBJ importer aborts on them) and on
