@@ -66,29 +66,40 @@ void plate_parameters(const MeshModel&, RichParameterList& par) {
   par.addParam(RichEnum("page", 0, kPages, "Page", "Fit: the drawing with 10 mm margins. A4: the drawing centred on the page."));
 }
 
-// The layers of curves to draw: edges without faces, all or by name.
+// A layer's edges as curves, its vertex quality (the curve filters' strength) as their strength.
+PlateCurves curves_of(MeshModel& m, double width_mm) {
+  PlateCurves c{m.label().toStdString(), {}, {}, width_mm, {}};
+  const bool strength = m.hasDataMask(MeshModel::MM_VERTQUALITY);
+  std::vector<int> index(size_t(m.cm.vert.size()), -1);
+  for (size_t i = 0; i < m.cm.vert.size(); ++i)
+    if (!m.cm.vert[i].IsD()) {
+      const auto& q = m.cm.vert[i].cP();
+      index[i] = int(c.points.size());
+      c.points.push_back(Vec3(q[0], q[1], q[2]));
+      if (strength) c.strength.push_back(m.cm.vert[i].cQ());
+    }
+  for (const auto& e : m.cm.edge)
+    if (!e.IsD()) c.segments.push_back({index[size_t(vcg::tri::Index(m.cm, e.cV(0)))], index[size_t(vcg::tri::Index(m.cm, e.cV(1)))]});
+  return c;
+}
+
+// The layers of curves to draw: every layer of edges without faces, or the ones named (each must
+// be there and hold curves).
 std::vector<PlateCurves> curve_layers(FilterCall& call, const QString& wanted, double width_mm) {
   QStringList names;
   for (const QString& n : wanted.split(';')) if (!n.trimmed().isEmpty()) names << n.trimmed();
   const bool all = names.isEmpty() || (names.size() == 1 && names[0].toLower() == "all");
   std::vector<PlateCurves> layers;
   for (MeshModel* m : document_layers(call.doc)) {
-    if (m->cm.fn > 0 || m->cm.en == 0 || !(all || names.contains(m->label()))) continue;
-    PlateCurves c{m->label().toStdString(), {}, {}, width_mm, {}};
-    const bool strength = m->hasDataMask(MeshModel::MM_VERTQUALITY);  // the curve filters' strength
-    std::vector<int> index(size_t(m->cm.vert.size()), -1);
-    for (size_t i = 0; i < m->cm.vert.size(); ++i)
-      if (!m->cm.vert[i].IsD()) {
-        const auto& q = m->cm.vert[i].cP();
-        index[i] = int(c.points.size());
-        c.points.push_back(Vec3(q[0], q[1], q[2]));
-        if (strength) c.strength.push_back(m->cm.vert[i].cQ());
-      }
-    for (const auto& e : m->cm.edge)
-      if (!e.IsD()) c.segments.push_back({index[size_t(vcg::tri::Index(m->cm, e.cV(0)))], index[size_t(vcg::tri::Index(m->cm, e.cV(1)))]});
-    layers.push_back(std::move(c));
+    const bool curves = m->cm.fn == 0 && m->cm.en > 0;
+    if (all ? curves : names.removeAll(m->label()) > 0) {
+      if (!curves)
+        throw InputError(qUtf8Printable("The layer \"" + m->label() + "\" holds " + (m->cm.fn > 0 ? "a surface" : "no edges") +
+                                        ", not curves: name a layer of curves (Demarcating Curves, Relief Edges...)."));
+      layers.push_back(curves_of(*m, width_mm));
+    }
   }
-  if (layers.empty() && !all) throw InputError(qUtf8Printable("No curve layer is called " + names.join(" or ") + "."));
+  if (!all && !names.isEmpty()) throw InputError(qUtf8Printable("No layer is called " + names.join(" or ") + "."));
   return layers;
 }
 

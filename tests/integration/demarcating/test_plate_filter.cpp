@@ -118,7 +118,10 @@ TEST(PlateFilter, AnA4PageAndBadInput) {
   EXPECT_TRUE(read_text(dir + "/none.svg").empty());
   // A layer asked for by a name that is not there.
   run = run_filters("plate_bad_name", r.mesh, {demarcating(), plate("x.svg", 0, 0, "no such layer")}, {}, &dir);
-  EXPECT_NE(run.output.find("No curve layer is called no such layer"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("No layer is called no such layer"), std::string::npos) << run.output;
+  // A layer named that is a surface, not curves.
+  run = run_filters("plate_surface_named", r.mesh, {demarcating(), plate("x.svg", 0, 0, "in.ply")}, {}, &dir);
+  EXPECT_NE(run.output.find("The layer \"in.ply\" holds a surface, not curves"), std::string::npos) << run.output;
   // A drawing of 2 m at 1:1 does not fit an A4 page.
   run = run_filters("plate_too_big", r.mesh,
                     {demarcating(), mlx_filter("Export Illustration Plate",
