@@ -161,12 +161,17 @@ QString write_svg(FilterCall& call, const Plate& plate) {
 }
 
 // The object's size at the unit given: a scan whose unit is not the millimetre gives itself away.
-QString size_check(const Plate& plate, double unit_mm) {
+QString size_text(const Plate& plate, double unit_mm) {
   const Vec2 s = plate.real_size_mm;
-  QString text = QString("the object %1 x %2 mm at %3 mm per unit").arg(s.x(), 0, 'g', 4).arg(s.y(), 0, 'g', 4).arg(unit_mm);
-  if (std::max(s.x(), s.y()) > 1000 || std::max(s.x(), s.y()) < 5)
-    text += " — if that is not its size, set Mesh unit (mm) to the scan's unit";
-  return text;
+  return QString("the object %1 x %2 mm at %3 mm per unit").arg(s.x(), 0, 'g', 4).arg(s.y(), 0, 'g', 4).arg(unit_mm);
+}
+
+// A size no object drawn for a report has (over 1 m, under 5 mm) is most likely a wrong unit.
+void warn_of_unit(FilterCall& call, const Plate& plate, double unit_mm) {
+  const double size = std::max(plate.real_size_mm.x(), plate.real_size_mm.y());
+  if (size <= 1000 && size >= 5) return;
+  call.log("Warning: " + size_text(plate, unit_mm) + ": if that is not its size, the scan is not in that unit — set Mesh "
+           "unit (mm) to the scan's unit (the plate's scale and scale bar assume it).");
 }
 
 void apply_plate(FilterCall& call) {
@@ -191,8 +196,9 @@ void apply_plate(FilterCall& call) {
                .arg(thousands(plate.hidden_segments) +
                     (plate.outside_segments > 0 ? QString(", %1 off the mesh's drawing").arg(thousands(plate.outside_segments)) : QString()))
                .arg(plate.section_segments > 0 ? QString(", a section of %1 segments").arg(plate.section_segments) : QString())
-               .arg(size_check(plate, p.unit_mm)).arg(QString::fromStdString(plate.bar_label)).arg(svg)
+               .arg(size_text(plate, p.unit_mm)).arg(QString::fromStdString(plate.bar_label)).arg(svg)
                .arg(pdf.isEmpty() ? QString() : " and " + pdf).arg(timer.elapsed() / 1000.0, 0, 'f', 2));
+  warn_of_unit(call, plate, p.unit_mm);
 }
 
 // The same page through QPainter: millimetres mapped to the PDF's points.

@@ -111,6 +111,11 @@ TEST(PlateFilter, AnA4PageAndBadInput) {
   const std::string auto_svg = read_text(dir + "/auto.svg");
   EXPECT_NE(auto_svg.find("<g id=\"section\""), std::string::npos);
   EXPECT_NE(auto_svg.find("stroke-dasharray"), std::string::npos);
+  EXPECT_EQ(run.output.find("Warning"), std::string::npos) << run.output;  // 20 mm: a plausible size
+  // At 1 mm per unit the disc's plane is 2 mm across: the plate is made, and the unit questioned.
+  run = run_filters("plate_unit", r.mesh, {demarcating(), plate("unit.svg", 1, 0, "all", {1, 0, 0})}, {}, &dir);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("Warning: the object 2 x 2 mm at 1 mm per unit"), std::string::npos) << run.output;
   // No curve layer: a clear message, no file.
   run = run_filters("plate_no_curves", r.mesh, {plate("none.svg", 0, 0)}, {}, &dir);
   EXPECT_FALSE(run.crashed);
