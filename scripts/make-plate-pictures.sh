@@ -53,45 +53,16 @@ EOT
   rsvg-convert --dpi-x 60 --dpi-y 60 -o "$here/docs/img/plate_lithic_svg.png" "$out/lithic-plate.svg"
 fi
 # The filter's dialog in MeshLab's GUI, found by MeshLab's filter search.
-cat > "$work/dialog.txt" <<'EOT'
-sleep 6
-click 1258 46
-sleep 1
-type Export Illustration Plate
-sleep 1.5
-key Down
-key Return
-sleep 2.5
-shot dialog.png
-EOT
+# open_filter NAME: the gui-shots.sh actions that open a filter's dialog by MeshLab's filter search
+# (MeshLab 2020.09 at 1280 x 900).
+open_filter() { printf 'click 1258 46\nsleep 1\ntype %s\nsleep 1.5\nkey Down\nkey Return\nsleep 2.5\n' "$1"; }
+{ echo "sleep 6"; open_filter "Export Illustration Plate"; echo "shot dialog.png"; } > "$work/dialog.txt"
 (cd "$work" && "$here/scripts/gui-shots.sh" "$work/dialog.txt" -- "$work/coin.ply" > /dev/null)
 convert "$work/dialog.png" -crop 556x752+0+0 +repage "$here/docs/img/plate_dialog.png"
-# The same from the menus: Demarcating Curves applied, then the plate at its defaults; MeshLab's
-# layers and log after it (the plate beside coin.ply).
-cat > "$work/apply.txt" <<'EOT'
-sleep 6
-click 1258 46
-sleep 1
-type Demarcating Curves
-sleep 1.5
-key Down
-key Return
-sleep 2.5
-click 414 577
-sleep 10
-click 142 577
-sleep 1
-click 1258 46
-sleep 1
-type Export Illustration Plate
-sleep 1.5
-key Down
-key Return
-sleep 2.5
-click 414 733
-sleep 6
-shot applied.png
-EOT
+# The same from the menus: Demarcating Curves applied (its Apply, then Close), then the plate at
+# its defaults (Apply); MeshLab's layers and log after it (the plate beside coin.ply).
+{ echo "sleep 6"; open_filter "Demarcating Curves"; printf 'click 414 577\nsleep 10\nclick 142 577\nsleep 1\n'
+  open_filter "Export Illustration Plate"; printf 'click 414 733\nsleep 6\nshot applied.png\n'; } > "$work/apply.txt"
 (cd "$work" && "$here/scripts/gui-shots.sh" "$work/apply.txt" -- "$work/coin.ply" > /dev/null)
 convert "$work/applied.png" -resize 75% "$here/docs/img/plate_gui_applied.png"
 

@@ -133,8 +133,8 @@ double Polylines::total_length() const {
   return L;
 }
 
-std::vector<std::vector<int>> Polylines::chains() const {
-  const int np = static_cast<int>(points.size());
+std::vector<std::vector<int>> chain_segments(int n_points, const std::vector<std::array<int, 2>>& segments) {
+  const int np = n_points;
   std::vector<int> deg(np, 0);
   for (const auto& s : segments) {
     ++deg[s[0]];
@@ -172,6 +172,8 @@ std::vector<std::vector<int>> Polylines::chains() const {
     if (!used[k]) walk(segments[k][0], k);
   return out;
 }
+
+std::vector<std::vector<int>> Polylines::chains() const { return chain_segments(int(points.size()), segments); }
 
 DirectionalFieldView view_of(const DirectionalField& f) {
   DirectionalFieldView v;

@@ -4,40 +4,10 @@
 #include <cmath>
 
 #include "plate_raster.h"
+#include "reliefkit/base/zero_crossings.h"
 
 namespace reliefkit {
 namespace {
-
-// The segments chained into polylines of point indices: from each point of degree other than 2,
-// then the closed loops (their first point repeated at the end).
-std::vector<std::vector<int>> chain_segments(int n_points, const std::vector<std::array<int, 2>>& segments) {
-  std::vector<std::vector<int>> next(static_cast<size_t>(n_points));
-  for (size_t s = 0; s < segments.size(); ++s)
-    for (int k = 0; k < 2; ++k) next[size_t(segments[s][k])].push_back(int(s));
-  std::vector<char> used(segments.size(), 0);
-  std::vector<std::vector<int>> chains;
-  auto walk = [&](int start) {
-    for (int s : next[size_t(start)]) {
-      if (used[size_t(s)]) continue;
-      std::vector<int> chain{start};
-      int at = start, seg = s;
-      while (seg >= 0) {
-        used[size_t(seg)] = 1;
-        at = segments[size_t(seg)][0] == at ? segments[size_t(seg)][1] : segments[size_t(seg)][0];
-        chain.push_back(at);
-        seg = -1;
-        if (next[size_t(at)].size() == 2)
-          for (int t : next[size_t(at)])
-            if (!used[size_t(t)]) seg = t;
-      }
-      chains.push_back(std::move(chain));
-    }
-  };
-  for (int p = 0; p < n_points; ++p)
-    if (next[size_t(p)].size() != 2) walk(p);
-  for (int p = 0; p < n_points; ++p) walk(p);  // what is left: closed loops
-  return chains;
-}
 
 // On the mesh's drawing (within a pixel of the raster): curves off it belong to another mesh.
 bool on_drawing(const Vec3& p, const PageFrame& frame, const DepthRaster& r) {

@@ -72,8 +72,13 @@ struct Polylines {
   double total_length() const;
   /// Chains segments into maximal polylines (point index lists; closed loops repeat their first
   /// point at the end). Branch points (degree > 2, only on non-manifold input) end chains.
-  std::vector<std::vector<int>> chains() const;
+  std::vector<std::vector<int>> chains() const;  // chain_segments(points, segments)
 };
+
+/// Segments (pairs of indices into `n_points` points) chained into maximal polylines of point
+/// indices: open chains from each point of degree other than 2, then the closed loops (their first
+/// point repeated at the end). Branch points end chains.
+std::vector<std::vector<int>> chain_segments(int n_points, const std::vector<std::array<int, 2>>& segments);
 
 /// Throws InputError if the field's sizes do not match the mesh.
 Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& normals,
