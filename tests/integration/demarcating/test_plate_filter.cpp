@@ -168,3 +168,14 @@ TEST(PlateFilter, ALayerWithoutAFileNeedsAFullPath) {
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(read_text(svg).find("<path"), std::string::npos);
 }
+
+// A scale that is not a number, and a folder that does not exist: a clear message, no crash.
+TEST(PlateFilter, ANaNScaleAndAMissingFolderAreRefused) {
+  const Relief r = disc_on_plane({}, 60);
+  ServerRun run = run_filters("plate_nan_scale", r.mesh, {demarcating(), plate("x.svg", 0, 0, "all", {50, std::nan(""), 0})}, {});
+  EXPECT_FALSE(run.crashed) << run.output;
+  EXPECT_NE(run.output.find("(\"ratio\") must be between 0 and 1000"), std::string::npos) << run.output;
+  run = run_filters("plate_missing_folder", r.mesh, {demarcating(), plate("/no/such/folder/p.svg", 0, 0)}, {});
+  EXPECT_FALSE(run.crashed) << run.output;
+  EXPECT_NE(run.output.find("could not be written to /no/such/folder/p.svg"), std::string::npos) << run.output;
+}
