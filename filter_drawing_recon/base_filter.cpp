@@ -129,69 +129,34 @@ BaseSettings read_base_settings(FilterCall& call) {
   return s;
 }
 
-// The drawing's images, each read once, with their pixel size (mm).
+// The drawing's images, each read once, with their pixel size (mm): a view's own image by its name
+// (relative to the drawing's folder), "" the drawing.
 class DrawingImages {
  public:
   explicit DrawingImages(const BaseSettings& s) : s_(s), dir_(QFileInfo(s.path).absoluteDir()) {}
-  struct Image { QString path; cv::Mat grey; double pixel_mm; };
-  // The image of a view: its own file (relative to the drawing's folder) or the drawing's.
-  const Image& of(const DrawingView& v) {
+  const ViewImage& of(const std::string& name) {
     QString p = s_.path;
-    if (!v.image.empty()) {
-      p = QString::fromStdString(v.image);
+    if (!name.empty()) {
+      p = QString::fromStdString(name);
       if (QFileInfo(p).isRelative()) p = dir_.filePath(p);
     }
-    for (const auto& im : images_)
-      if (im.path == p) return im;
+    for (size_t k = 0; k < paths_.size(); ++k)
+      if (paths_[k] == p) return images_[k];
     double reduction = 1;
     const cv::Mat img = read_drawing_image(p.toStdString(), &reduction);
-    images_.push_back({p, drawing_grey(img), s_.pixel_mm / reduction});
+    paths_.push_back(p);
+    images_.push_back({drawing_grey(img), s_.pixel_mm / reduction});
     return images_.back();
   }
 
  private:
   const BaseSettings& s_;
   QDir dir_;
-  std::deque<Image> images_;  // references stay valid as images are added
+  std::vector<QString> paths_;
+  std::deque<ViewImage> images_;  // references stay valid as images are added
 };
 
-// One view's outline as found in its image.
-struct FoundView {
-  DrawingOutline outline;
-  double pixel_mm = 1;
-  cv::Rect frame;  // the image (or region) it was found in
-};
-
-// Views without a region that share the drawing's image take its largest outlines in reading
-// order; the others their own region's or image's largest.
-std::vector<FoundView> find_view_outlines(const BaseSettings& s, const std::vector<DrawingView>& views) {
-  DrawingImages images(s);
-  images.of(DrawingView{});  // the drawing is read (and must be readable) whichever views use it
-  std::vector<FoundView> found(views.size());
-  std::vector<size_t> shared;
-  for (size_t i = 0; i < views.size(); ++i)
-    if (views[i].image.empty() && views[i].region.area() == 0) shared.push_back(i);
-  if (!shared.empty()) {
-    const auto& im = images.of(DrawingView{});
-    auto all = drawing_outlines(im.grey, cv::Rect(), int(shared.size()), s.outline);
-    if (all.size() < shared.size())
-      throw InputError("The views \"" + s.views_text.toStdString() + "\" need " + std::to_string(shared.size()) +
-                       " separate outlines, but the drawing has " + std::to_string(all.size()) +
-                       ": give each view's region (front = x y w h; ...).");
-    sort_reading_order(all);
-    for (size_t k = 0; k < shared.size(); ++k) found[shared[k]] = {all[k], im.pixel_mm, cv::Rect(0, 0, im.grey.cols, im.grey.rows)};
-  }
-  for (size_t i = 0; i < views.size(); ++i) {
-    if (views[i].image.empty() && views[i].region.area() == 0) continue;
-    const auto& im = images.of(views[i]);
-    const cv::Rect whole(0, 0, im.grey.cols, im.grey.rows);
-    found[i] = {drawing_outlines(im.grey, views[i].region, 1, s.outline).front(), im.pixel_mm,
-                views[i].region.area() > 0 ? (views[i].region & whole) : whole};
-  }
-  return found;
-}
-
-void log_view(FilterCall& call, ViewKind kind, const FoundView& f) {
+void log_view(FilterCall& call, ViewKind kind, const FoundViewOutline& f) {
   QString name = view_name(kind);
   name[0] = name[0].toUpper();
   const DrawingOutline& o = f.outline;
@@ -202,8 +167,8 @@ void log_view(FilterCall& call, ViewKind kind, const FoundView& f) {
                .arg(o.box.height)
                .arg(o.box.x)
                .arg(o.box.y)
-               .arg(o.box.width * f.pixel_mm, 0, 'f', 1)
-               .arg(o.box.height * f.pixel_mm, 0, 'f', 1)
+               .arg(o.box.width * f.pixel_size, 0, 'f', 1)
+               .arg(o.box.height * f.pixel_size, 0, 'f', 1)
                .arg(o.gap, 0, 'f', 0)
                .arg(o.dropped));
   if (touches_frame(o.box, f.frame))
@@ -253,13 +218,8 @@ BaseMatch choose_model(FilterCall& call, const BaseSettings& s, const BaseLibrar
 
 void log_base(FilterCall& call, const LibraryModel& lm, const BaseMatch& chosen, size_t views, const DeformReport& rep,
               const TriMesh& base, double seconds) {
-  constexpr double kPoorFit = 0.05;  // the tests' worst deliberate case (a cylinder made a goblet) stays under it
-  if (rep.hausdorff_after > kPoorFit)
-    call.log(QString("Warning: the base stays %1 % of the outline's size off the drawing (more than %2 %): the model "
-                     "could not be bent to this outline. Try another match (Use model), a second view, or check the "
-                     "outline (a drawing cut by the image's border, text run into it).")
-                 .arg(100 * rep.hausdorff_after, 0, 'f', 1)
-                 .arg(100 * kPoorFit, 0, 'f', 0));
+  const std::string warning = base_fit_warning(rep);
+  if (!warning.empty()) call.log(QString::fromStdString(warning));
   call.log(QString("Base from Drawing Silhouette: %1 (%2, score %3) deformed to %4 view(s): %5 silhouette vertices pulled, "
                    "silhouette off the outline by %6 % of its size before, %7 % after (Hausdorff); Laplacian coordinates "
                    "changed by %8 %; %9 vertices, %10 faces; %11; %12 s.")
@@ -282,11 +242,13 @@ void apply_base(FilterCall& call) {
   const BaseSettings s = read_base_settings(call);
   const auto views = parse_drawing_views(s.views_text.toStdString());
   if (call.progress) call.progress(2, "Reading the drawing");
-  const std::vector<FoundView> found = find_view_outlines(s, views);
+  DrawingImages images(s);
+  const std::vector<FoundViewOutline> found =
+      find_view_outlines(views, [&](const std::string& name) -> const ViewImage& { return images.of(name); }, s.outline);
   std::vector<ViewOutline> outlines;
   std::vector<ViewFeature> features;
   for (size_t i = 0; i < views.size(); ++i) {
-    outlines.push_back({views[i].kind, outline_in_units(found[i].outline.outline, found[i].pixel_mm)});
+    outlines.push_back({views[i].kind, outline_in_units(found[i].outline.outline, found[i].pixel_size)});
     features.push_back({views[i].kind, circle_feature(outlines.back().outline)});
     log_view(call, views[i].kind, found[i]);
   }

@@ -281,7 +281,7 @@ ReliefLayers relief_on_layer(FilterCall& call, const Drawing& d, const DrawingIn
   const Surface base = surface_of(bv);
   const DrawingProjection proj = s.as_drawn ? project_drawing_as_drawn(base, area, d.pixel_mm) : project_drawing(base, area, view);
   s.relief.pixel_size = proj.pixel_size;
-  s.relief.step_height = s.step_percent / 100 * area.width * proj.pixel_size;
+  s.relief.step_height = relief_step_height(s.step_percent, area, proj.pixel_size);
   if (proj.edge_px > s.relief.margin / 2)
     call.log(QString("The base's edges are %1 px of the drawing, but steps %2 px wide need edges of at most %3 px: the "
                      "relief will be coarse. Subdivide the base first (Filters > Remeshing, Simplification and "
@@ -308,43 +308,31 @@ ReliefLayers relief_on_layer(FilterCall& call, const Drawing& d, const DrawingIn
   return out;
 }
 
-// The base's vertex spacing: the user's, or drawing_cell's unless the grid would be too large.
-double grid_cell(FilterCall& call, const DrawingInterpretation& di, const ReliefSettings& s, const cv::Rect& area) {
-  if (s.cell > 0) return s.cell;
-  const double cell = drawing_cell(di, s.relief.margin);
-  const double verts = (area.width / cell + 1) * (area.height / cell + 1);
-  if (verts <= kMaxAutoVertices) return cell;
-  const double coarser = std::sqrt(double(area.width) * area.height / kMaxAutoVertices);
-  call.log(QString("Base resolution: %1 px per vertex would make %2 vertices; %3 px taken (steps less finely "
-                   "resolved; set Base resolution to override).")
-               .arg(cell, 0, 'g', 3)
-               .arg(thousands((long long)verts))
-               .arg(coarser, 0, 'g', 3));
-  return coarser;
-}
-
 // On a plane or a cylinder: a grid over the drawn part of the image.
-ReliefLayers relief_on_grid(FilterCall& call, const Drawing& d, const DrawingInterpretation& di, ReliefSettings& s,
-                            const cv::Rect& area) {
-  const double cell = grid_cell(call, di, s, area);
+ReliefLayers relief_on_grid(FilterCall& call, const Drawing& d, const DrawingInterpretation& di, ReliefSettings& s) {
+  ReliefGridParams gp;
+  gp.margin = s.relief.margin, gp.cell = s.cell, gp.max_vertices = kMaxAutoVertices, gp.pixel_size = d.pixel_mm;
+  const ReliefGrid g = relief_grid(d.curves, di, gp);
+  if (g.coarsened())
+    call.log(QString("Base resolution: %1 px per vertex would make %2 vertices; %3 px taken (steps less finely "
+                     "resolved; set Base resolution to override).")
+                 .arg(g.wanted_cell, 0, 'g', 3)
+                 .arg(thousands((long long)g.wanted_vertices))
+                 .arg(g.cell, 0, 'g', 3));
   s.relief.pixel_size = d.pixel_mm;
-  s.relief.step_height = s.step_percent / 100 * area.width * d.pixel_mm;
+  s.relief.step_height = relief_step_height(s.step_percent, g.area, d.pixel_mm);
   if (call.progress) call.progress(40, "Reconstructing the relief");
-  const TriMesh grid = drawing_grid(area.width, area.height, cell, d.pixel_mm, area.x, area.y);
   const DrawingBase shape = s.base == kCylinder ? DrawingBase::Cylinder : DrawingBase::Plane;
-  const double circumference = d.image.cols * d.pixel_mm, front = (area.x + 0.5 * area.width) * d.pixel_mm;
+  const double circumference = d.image.cols * d.pixel_mm, front = (g.area.x + 0.5 * g.area.width) * d.pixel_mm;
   ReliefLayers out;
-  out.relief = reconstruct_drawing_relief(grid, d.curves, di, s.relief);
-  out.surface = relief_surface(grid, out.relief.height, shape, circumference, front);
-  std::vector<Vec2> pixel(size_t(grid.n_vertices()));
-  for (int v = 0; v < grid.n_vertices(); ++v)
-    pixel[size_t(v)] = Vec2(grid.vertices[size_t(v)].x() / d.pixel_mm, -grid.vertices[size_t(v)].y() / d.pixel_mm);
-  out.level = region_levels(di, pixel);
+  out.relief = reconstruct_drawing_relief(g.grid, d.curves, di, s.relief);
+  out.surface = relief_surface(g.grid, out.relief.height, shape, circumference, front);
+  out.level = region_levels(di, g.pixel);
   for (bool shading : {false, true})
     (shading ? out.shading : out.curves) = curves_on_grid_relief(curves_where(d.curves, di.shading, shading), d.pixel_mm,
-                                                                 area, cell, out.relief.height, shape, circumference, front);
-  out.base_vertices = grid.n_vertices();
-  out.spacing_px = cell;
+                                                                 g.area, g.cell, out.relief.height, shape, circumference, front);
+  out.base_vertices = g.grid.n_vertices();
+  out.spacing_px = g.cell;
   return out;
 }
 
@@ -369,8 +357,8 @@ void apply_relief(FilterCall& call) {
   if (call.progress) call.progress(30, "Interpreting the drawing");
   const DrawingInterpretation di = interpret_drawing(d.curves, ip);
   require_rising_regions(d.curves, di, d.detection.sigma);
-  const cv::Rect area = drawing_extent(d.curves, 4 * s.relief.margin + 4);
-  const ReliefLayers r = s.base == kCurrent ? relief_on_layer(call, d, di, s, area) : relief_on_grid(call, d, di, s, area);
+  const ReliefLayers r = s.base == kCurrent ? relief_on_layer(call, d, di, s, relief_area(d.curves, s.relief.margin))
+                                             : relief_on_grid(call, d, di, s);
   const QString written = s.interpretation.isEmpty() ? write_interpretation_file(call, d, di) : QString();
   if (call.progress) call.progress(95, "Adding the layers");
   add_mesh_layer(call.doc, image_label(d, "relief"), r.surface, r.relief.height, {{"drawing_level", &r.level}}, true);

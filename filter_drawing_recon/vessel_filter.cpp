@@ -85,6 +85,7 @@ void apply_vessel(FilterCall& call) {
                .arg(thousands(vessel.n_vertices()))
                .arg(thousands(vessel.n_faces()))
                .arg(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 0, 'f', 2));
+  for (const std::string& line : vessel_log_lines(profile)) call.log(QString::fromStdString(line));
 }
 
 }  // namespace

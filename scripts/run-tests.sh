@@ -31,8 +31,22 @@ seed_test_costs() {  # build-dir costs-file
 stage "set-up and Release build" bash "$here/scripts/build.sh"
 start_virtual_display
 seed_test_costs "$here/build" "$here/tests/costs/release.txt"
+# Tests write only into temporary folders: the source tree's files (the build folders, third_party/
+# and out/ aside) are the same after the tests as before them.
+source_tree_state() {
+  git -C "$here" status --porcelain --ignored --untracked-files=all 2>/dev/null |
+    grep -vE '^(!!|\?\?) (build[^/]*/|third_party/|out/)' || true
+}
+tree_before="$(source_tree_state)"
 stage "unit and integration tests (Release, $jobs at a time)" \
   ctest --test-dir "$here/build" --output-on-failure -j"$jobs"
+source_tree_untouched() {
+  local written
+  written="$(diff <(echo "$tree_before") <(source_tree_state) | grep '^>' || true)"
+  [ -z "$written" ] || { echo "the tests wrote into the source tree:"; echo "$written"; return 1; }
+  echo "the source tree is as it was before the tests"
+}
+stage "the source tree untouched by the tests" source_tree_untouched
 
 fuzz="${RELIEFKIT_FUZZ_BUILD_DIR:-$here/build-fuzz}"
 build_fuzzer() {

@@ -53,6 +53,44 @@ void draw_section(cv::Mat& img, const std::vector<cv::Point>& poly, const Vessel
   cv::polylines(img, polys, true, cv::Scalar(0), o.line_px, cv::LINE_AA);
 }
 
+// Sherds drawn inside the exterior half: closed outlines, each with a cross-hatched band.
+void draw_sherds(cv::Mat& img, double axis) {
+  for (const auto& [y0, y1] : {std::pair{120, 200}, std::pair{250, 330}}) {
+    const std::vector<cv::Point> sherd{{int(axis) + 20, y0}, {int(axis) + int(outer_radius(y0)) - 25, y0 + 8},
+                                       {int(axis) + int(outer_radius(y1)) - 25, y1}, {int(axis) + 30, y1 - 6}};
+    cv::Mat inside(img.size(), CV_8U, cv::Scalar(0)), hatch(img.size(), CV_8U, cv::Scalar(0));
+    cv::fillPoly(inside, std::vector<std::vector<cv::Point>>{sherd}, cv::Scalar(255));
+    cv::rectangle(inside, cv::Point(0, 0), cv::Point(img.cols, y0 + 25), cv::Scalar(0), cv::FILLED);
+    cv::rectangle(inside, cv::Point(0, y0 + 55), cv::Point(img.cols, img.rows), cv::Scalar(0), cv::FILLED);
+    for (int c = -img.rows; c < img.cols; c += 6) {
+      cv::line(hatch, {c, 0}, {c + img.rows, img.rows}, cv::Scalar(255), 1);
+      cv::line(hatch, {c + img.rows, 0}, {c, img.rows}, cv::Scalar(255), 1);
+    }
+    img.setTo(0, hatch & inside);
+    cv::polylines(img, std::vector<std::vector<cv::Point>>{sherd}, true, cv::Scalar(0), 2, cv::LINE_AA);
+  }
+}
+
+// What a catalogue page adds round a vessel: a base section drawn apart below, a number to the
+// right, a second, smaller vessel (filled section, outline, rim line, axis) further right.
+void draw_catalogue_extras(cv::Mat& img, const VesselDrawingOptions& o, double axis) {
+  if (o.base_drawn_apart) {
+    const std::vector<cv::Point> base{{int(axis) - 150, 600}, {int(axis) - 10, 600}, {int(axis) - 10, 616}, {int(axis) - 150, 616}};
+    cv::fillPoly(img, std::vector<std::vector<cv::Point>>{base}, cv::Scalar(0), cv::LINE_AA);
+    cv::line(img, cv::Point(int(axis) + 10, 600), cv::Point(int(axis) + 150, 600), cv::Scalar(0), 2, cv::LINE_AA);
+  }
+  if (o.label_right > 0)
+    cv::putText(img, "1042", cv::Point(int(axis) + 200 + o.label_right, 300), cv::FONT_HERSHEY_SIMPLEX, 1.2, cv::Scalar(0), 3);
+  if (o.second_vessel > 0) {
+    const int a = int(axis) + 200 + o.second_vessel;
+    const std::vector<cv::Point> wall{{a - 90, 200}, {a - 70, 330}, {a - 60, 330}, {a - 80, 200}};
+    cv::fillPoly(img, std::vector<std::vector<cv::Point>>{wall}, cv::Scalar(0), cv::LINE_AA);
+    cv::line(img, cv::Point(a + 85, 200), cv::Point(a + 65, 330), cv::Scalar(0), 2, cv::LINE_AA);
+    cv::line(img, cv::Point(a - 80, 200), cv::Point(a + 85, 200), cv::Scalar(0), 2, cv::LINE_AA);
+    cv::line(img, cv::Point(a, 190), cv::Point(a, 340), cv::Scalar(0), 1);
+  }
+}
+
 }  // namespace
 
 VesselDrawing vessel_drawing(const VesselDrawingOptions& o) {
@@ -60,7 +98,8 @@ VesselDrawing vessel_drawing(const VesselDrawingOptions& o) {
   const double top = o.rim ? kRim : kRim + 60, bottom = o.base ? kBase : kBase - 80;
   d.height = bottom - top;
   d.section = true_section(top, bottom, o.base);
-  d.image = cv::Mat(560, 640, CV_8UC1, cv::Scalar(255));
+  const int wider = o.label_right > 0 || o.second_vessel > 0 ? 280 + o.label_right + o.second_vessel : 0;
+  d.image = cv::Mat(o.base_drawn_apart ? 760 : 560, 640 + wider, CV_8UC1, cv::Scalar(255));
   std::vector<Vec2>& exterior = d.exterior;
   for (double y = top; y <= bottom; y += 1) exterior.emplace_back(outer_radius(y), -y);
   if (o.base) exterior.emplace_back(0, -kBase);
@@ -76,6 +115,8 @@ VesselDrawing vessel_drawing(const VesselDrawingOptions& o) {
   if (o.rim) cv::line(d.image, cv::Point(int(d.axis_x) - mouth, int(top)), cv::Point(int(d.axis_x) + mouth, int(top)), cv::Scalar(0),
            o.line_px, cv::LINE_AA);
   if (o.axis_line) cv::line(d.image, cv::Point(int(d.axis_x), 30), cv::Point(int(d.axis_x), 520), cv::Scalar(0), 1);
+  if (o.decorated_sherds) draw_sherds(d.image, d.axis_x);  // on the exterior half (the section on the left)
+  draw_catalogue_extras(d.image, o, d.axis_x);
   return d;
 }
 

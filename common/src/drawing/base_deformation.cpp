@@ -493,4 +493,13 @@ TriMesh deform_to_outlines(const TriMesh& model, const std::vector<ViewOutline>&
   return deform_to_outlines(Surface::borrow(model), views, params, report);
 }
 
+std::string base_fit_warning(const DeformReport& report) {
+  if (!(report.hausdorff_after > kPoorBaseFit)) return "";
+  char figures[96];
+  std::snprintf(figures, sizeof figures, "%.1f %% of the outline's size off the drawing (more than %.0f %%)",
+                100 * report.hausdorff_after, 100 * kPoorBaseFit);
+  return std::string("Warning: the base stays ") + figures + ": the model could not be bent to this outline. Try another "
+         "match (Use model), a second view, or check the outline (a drawing cut by the image's border, text run into it).";
+}
+
 }  // namespace reliefkit

@@ -431,4 +431,34 @@ bool touches_frame(const cv::Rect& b, const cv::Rect& frame) {
          frame.y + frame.height - (b.y + b.height) <= near;
 }
 
+std::vector<FoundViewOutline> find_view_outlines(const std::vector<DrawingView>& views,
+                                                 const std::function<const ViewImage&(const std::string&)>& image_of,
+                                                 const OutlineParams& params) {
+  const ViewImage& drawing = image_of("");
+  std::vector<FoundViewOutline> found(views.size());
+  std::vector<size_t> shared;
+  for (size_t i = 0; i < views.size(); ++i)
+    if (views[i].image.empty() && views[i].region.area() == 0) shared.push_back(i);
+  if (!shared.empty()) {
+    auto all = drawing_outlines(drawing.grey, cv::Rect(), int(shared.size()), params);
+    if (all.size() < shared.size()) {
+      std::string names;
+      for (size_t i : shared) names += std::string(names.empty() ? "" : ", ") + view_name(views[i].kind);
+      throw InputError("The views " + names + " need " + std::to_string(shared.size()) + " separate outlines, but the "
+                       "drawing has " + std::to_string(all.size()) + ": give each view's region (front = x y w h; ...).");
+    }
+    sort_reading_order(all);
+    for (size_t k = 0; k < shared.size(); ++k)
+      found[shared[k]] = {all[k], drawing.pixel_size, cv::Rect(0, 0, drawing.grey.cols, drawing.grey.rows)};
+  }
+  for (size_t i = 0; i < views.size(); ++i) {
+    if (views[i].image.empty() && views[i].region.area() == 0) continue;
+    const ViewImage& im = image_of(views[i].image);
+    const cv::Rect whole(0, 0, im.grey.cols, im.grey.rows);
+    found[i] = {drawing_outlines(im.grey, views[i].region, 1, params).front(), im.pixel_size,
+                views[i].region.area() > 0 ? (views[i].region & whole) : whole};
+  }
+  return found;
+}
+
 }  // namespace reliefkit

@@ -4,6 +4,8 @@
 // the SVG drawn by rsvg-convert; bad input.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -158,7 +160,10 @@ TEST(PlateFilter, DamagedMeshesGiveAMessageOrAPlate) {
 TEST(PlateFilter, ALayerWithoutAFileNeedsAFullPath) {
   std::string relief = read_text(source_dir() + "/examples/drawing_relief.mlx");
   relief = relief.substr(relief.find("<filter"), relief.find("</filter>") + 9 - relief.find("<filter"));
-  relief.replace(relief.find("examples/data"), 13, source_dir() + "/examples/data");
+  // The drawing in a folder of the test's own: the relief writes its interpretation file beside it.
+  const std::string drawings = temp_dir("plate_no_file_drawing");
+  std::filesystem::copy_file(source_dir() + "/examples/data/nested_drawing.png", drawings + "/nested_drawing.png");
+  relief.replace(relief.find("examples/data"), 13, drawings);
   std::string dir;
   ServerRun run = run_filters("plate_no_file", reliefkit::TriMesh{}, {relief, plate("", 1, 0, "all", {1, 0, 0})}, {}, &dir);
   EXPECT_FALSE(run.crashed) << run.output;

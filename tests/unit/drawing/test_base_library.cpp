@@ -444,3 +444,47 @@ TEST(BaseLibrary, BadDeformationInput) {
   EXPECT_THROW(deform_to_outlines(rktest::upright(make_base_model(standard_base_specs(1)[7])), {{ViewKind::Front, {}}}, {}),
                InputError);
 }
+
+// Which outline is which view (find_view_outlines): two figures on one page are the front (top)
+// and top (below) views in reading order; a view with its own image and one with a region take
+// theirs; a page with fewer outlines than views stops with the count.
+TEST(BaseLibrary, ViewsTakeTheirOutlinesInReadingOrderOrFromTheirOwnImageOrRegion) {
+  cv::Mat page(400, 300, CV_8UC1, cv::Scalar(255)), side(200, 200, CV_8UC1, cv::Scalar(255));
+  cv::rectangle(page, cv::Point(50, 30), cv::Point(250, 150), cv::Scalar(0), 3);  // drawn first: the front
+  cv::circle(page, cv::Point(150, 290), 80, cv::Scalar(0), 3);                     // below it: the top
+  cv::ellipse(side, cv::Point(100, 100), cv::Size(60, 40), 0, 0, 360, cv::Scalar(0), 3);
+  const ViewImage drawing{drawing_grey(page), 0.5}, own{drawing_grey(side), 0.25};
+  std::vector<std::string> asked;
+  auto image_of = [&](const std::string& name) -> const ViewImage& {
+    asked.push_back(name);
+    return name.empty() ? drawing : own;
+  };
+  const auto found = find_view_outlines(parse_drawing_views("front; top; side = side.png"), image_of);
+  ASSERT_EQ(found.size(), 3u);
+  EXPECT_NEAR(found[0].outline.box.y, 30, 3);   // the rectangle
+  EXPECT_NEAR(found[1].outline.box.y, 210, 3);  // the circle
+  EXPECT_EQ(found[0].pixel_size, 0.5);
+  EXPECT_NEAR(found[2].outline.box.width, 124, 2);  // the side image's ellipse: 2 x (60 + 1.5) + 1 px, the line's outer edge
+  EXPECT_EQ(found[2].pixel_size, 0.25);
+  EXPECT_EQ(found[2].frame, cv::Rect(0, 0, 200, 200));
+  ASSERT_FALSE(asked.empty());
+  EXPECT_EQ(asked.front(), "");  // the drawing is read first, whatever the views
+  const auto region = find_view_outlines(parse_drawing_views("front = 0 200 300 200"), image_of);
+  EXPECT_NEAR(region[0].outline.box.y, 210, 3);
+  EXPECT_EQ(region[0].frame, cv::Rect(0, 200, 300, 200));
+  try {
+    find_view_outlines(parse_drawing_views("front; top; side"), image_of);
+    FAIL() << "three views from two outlines";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("need 3 separate outlines, but the drawing has 2"), std::string::npos) << e.what();
+  }
+}
+
+// The poor-fit rule: a base left more than 5 % of the outline's size off it is warned about.
+TEST(BaseLibrary, APoorFitIsWarnedAbout) {
+  DeformReport fits, poor;
+  fits.hausdorff_after = 0.049, poor.hausdorff_after = 0.08;
+  EXPECT_EQ(base_fit_warning(fits), "");
+  EXPECT_EQ(base_fit_warning(poor).rfind("Warning: the base stays 8.0 % of the outline's size off the drawing", 0), 0u)
+      << base_fit_warning(poor);
+}

@@ -79,6 +79,7 @@ TEST(VesselProfile, EachSectionStyleGivesTheDrawnProfileWithinOnePercentOfTheHei
     EXPECT_EQ(p.axis_source, VesselAxisSource::DrawnLine);
     EXPECT_NEAR(p.axis_x, d.axis_x, 1.0);
     EXPECT_EQ(p.axis_gap, 0);  // the base closes on the axis
+    EXPECT_NEAR(p.wall_thickness, d.wall, 1.5);
     const TriMesh m = revolve_vessel_profile(p, {});
     const VesselFit f = fit(m, p, d.section);
     EXPECT_LE(f.worst(), 0.01 * d.height);
@@ -96,8 +97,9 @@ TEST(VesselProfile, SectionOnTheRightAndNoAxisLine) {
   const rktest::VesselDrawing d = rktest::vessel_drawing(o);
   const VesselProfile p = read(d);
   EXPECT_EQ(p.side, VesselSide::Right);
-  EXPECT_EQ(p.axis_source, VesselAxisSource::MiddleOfDrawing);
+  EXPECT_EQ(p.axis_source, VesselAxisSource::MirroredEdges);
   EXPECT_NEAR(p.axis_x, d.axis_x, 1.5);
+  EXPECT_NEAR(p.wall_thickness, d.wall, 1.5);
   const VesselFit f = fit(revolve_vessel_profile(p, {}), p, d.section);
   EXPECT_LE(f.worst(), 0.01 * d.height);
 }
@@ -108,6 +110,7 @@ TEST(VesselProfile, MissingBaseOrRimStaysOpenWhereTheDrawingEnds) {
     o.rim = rim, o.base = false;
     const rktest::VesselDrawing d = rktest::vessel_drawing(o);
     const VesselProfile p = read(d);
+    SCOPED_TRACE(vessel_summary(p, 1, "px"));
     SCOPED_TRACE(vessel_summary(p, 1, "px"));
     EXPECT_GT(p.axis_gap, 50);  // the wall ends 86 px from the axis
     EXPECT_NE(vessel_summary(p, 1).find("the base is not drawn"), std::string::npos);
@@ -169,8 +172,69 @@ TEST(VesselProfile, ThePotteryBowlHalfSection) {
   EXPECT_NEAR(p.axis_x, 921, 3);
   EXPECT_NEAR(p.rim_radius, 921 - 88, 0.01 * 833);
   EXPECT_GT(p.axis_gap, 150);
-  EXPECT_GT(p.wall_thickness, 20);
-  EXPECT_LT(p.wall_thickness, 80);
+  // The wall is about 60 px across (between the lines' centres) along the body and 75 px at the
+  // lip, by eye on the image: the median inscribed diameter (measured 73.7 px) lies in that range.
+  EXPECT_GT(p.wall_thickness, 58);
+  EXPECT_LT(p.wall_thickness, 78);
+}
+
+static bool has_line(const VesselProfile& p, const std::string& start) {
+  for (const std::string& line : vessel_log_lines(p))
+    if (line.rfind(start, 0) == 0) return true;
+  return false;
+}
+
+// A catalogue drawing (issue 39's Bell Beaker): sherds with cross-hatched bands drawn inside the
+// exterior half, a base section drawn apart below and a number far to the right, so that the middle
+// of the drawn width is 160 px off the axis. The axis is where the outer edges mirror (or the drawn
+// line there); the base and the number are left out, with a log line.
+TEST(VesselProfile, ACatalogueDrawingFindsItsAxisWhereTheOuterEdgesMirror) {
+  for (const bool axis_line : {false, true}) {
+    VesselDrawingOptions o;
+    o.axis_line = axis_line, o.decorated_sherds = true, o.base_drawn_apart = true, o.label_right = 120;
+    const rktest::VesselDrawing d = rktest::vessel_drawing(o);
+    const VesselProfile p = read(d);
+    SCOPED_TRACE(vessel_summary(p, 1, "px"));
+    EXPECT_EQ(p.axis_source, axis_line ? VesselAxisSource::DrawnLine : VesselAxisSource::MirroredEdges);
+    EXPECT_NEAR(p.axis_x, d.axis_x, 1.5);
+    EXPECT_EQ(p.kind, VesselSectionKind::Filled);
+    EXPECT_NEAR(p.wall_thickness, d.wall, 1.5);
+    EXPECT_LE(fit(revolve_vessel_profile(p, {}), p, d.section).worst(), 0.01 * d.height);
+    EXPECT_GE(p.pieces_left_out, 2);  // the base's two pieces and the number
+    EXPECT_EQ(p.other_vessels, 0);
+    EXPECT_TRUE(has_line(p, "Left out:"));
+    EXPECT_FALSE(has_line(p, "Warning:"));
+  }
+}
+
+// A page of two vessels: the larger is made, and the log says there were two.
+TEST(VesselProfile, APageOfTwoVesselsMakesTheLargerAndSaysSo) {
+  VesselDrawingOptions o;
+  o.second_vessel = 120;
+  const rktest::VesselDrawing d = rktest::vessel_drawing(o);
+  const VesselProfile p = read(d);
+  EXPECT_NEAR(p.axis_x, d.axis_x, 1.5);
+  EXPECT_LE(fit(revolve_vessel_profile(p, {}), p, d.section).worst(), 0.01 * d.height);
+  EXPECT_EQ(p.other_vessels, 1);
+  EXPECT_TRUE(has_line(p, "Warning: the page holds 2 drawings"));
+}
+
+// The section ends 80 px above the base while the exterior is drawn down to it on both sides: the
+// vessel covers (400 - 60) / (480 - 60) = 81 % of the drawn profile's height, and the log says so.
+TEST(VesselProfile, AVesselShorterThanItsDrawnProfileIsWarnedAbout) {
+  VesselDrawingOptions o;
+  o.base = false;
+  rktest::VesselDrawing d = rktest::vessel_drawing(o);
+  std::vector<cv::Point> left, right;
+  for (int y = 400; y <= 480; ++y) {
+    const double r = d.exterior.back().x();  // the break's radius, kept below it
+    left.emplace_back(int(d.axis_x - r), y), right.emplace_back(int(d.axis_x + r), y);
+  }
+  cv::polylines(d.image, std::vector<std::vector<cv::Point>>{left, right}, false, cv::Scalar(0), 2);
+  const VesselProfile p = read(d);
+  SCOPED_TRACE(vessel_summary(p, 1, "px"));
+  EXPECT_NEAR(p.profile_coverage, 340.0 / 420.0, 0.03);
+  EXPECT_TRUE(has_line(p, "Warning: the vessel covers 8"));
 }
 
 TEST(VesselProfile, BadDrawingsStopWithAClearMessage) {

@@ -27,6 +27,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -90,6 +91,27 @@ Outline outline_in_units(const Outline& pixels, double pixel_size);
 /// Whether a body's box comes within 1 % of the frame's size (at least 3 px) of the frame's border:
 /// the drawing may be cut there, or its lines run into the border.
 bool touches_frame(const cv::Rect& box, const cv::Rect& frame);
+
+/// A view's image as its caller read it: grey, and its pixel size (mesh units).
+struct ViewImage {
+  cv::Mat grey;
+  double pixel_size = 1;
+};
+/// One view's outline as found, with the pixel size of its image and the frame it was found in
+/// (the view's region, or the whole image).
+struct FoundViewOutline {
+  DrawingOutline outline;
+  double pixel_size = 1;
+  cv::Rect frame;
+};
+/// Which outline is which view: the views with neither a region nor an image of their own share the
+/// drawing's image and take its largest outlines in reading order, one each; the others take the
+/// largest outline of their region or their image. `image_of(name)` gives the image a view names
+/// ("": the drawing; it is asked for first, so it must be readable whatever the views). Throws
+/// InputError when the drawing holds fewer separate outlines than the views sharing it.
+std::vector<FoundViewOutline> find_view_outlines(const std::vector<DrawingView>& views,
+                                                 const std::function<const ViewImage&(const std::string&)>& image_of,
+                                                 const OutlineParams& params = {});
 
 /// Outer outline of a mesh's orthographic projection onto two of its world axes: `u`, `v` are
 /// axis indices with signs (+1..+3 / -1..-3 for x, y, z and their negatives). Rasterised at
@@ -217,5 +239,12 @@ TriMesh deform_to_outlines(const TriMesh& model, const std::vector<ViewOutline>&
 
 /// Hausdorff distance of the mesh's silhouette to the outline in each view, over the outline's diagonal (max over views).
 double silhouette_error(const TriMesh& mesh, const std::vector<ViewOutline>& views, int resolution = 1024);
+
+/// The poor-fit rule: a base whose silhouette stays farther off the drawing's outlines than this
+/// share of their size (DeformReport::hausdorff_after) could not be bent to them (the tests'
+/// worst deliberate case, a cylinder made a goblet, stays under it).
+constexpr double kPoorBaseFit = 0.05;
+/// A "Warning: ..." line saying so and what to try, or "" when the base fits.
+std::string base_fit_warning(const DeformReport& report);
 
 }  // namespace reliefkit

@@ -97,6 +97,38 @@ enum class DrawingBase { Plane, Cylinder };
 TriMesh relief_surface(const TriMesh& grid, const std::vector<double>& height, DrawingBase base, double circumference,
                        double front = 0);
 
+// ---- the relief's grid as "Relief from Line Drawing" lays it (relief_grid.cpp) --------------
+
+/// The drawn part a relief covers: the curves' bounding box grown by four step widths and 4 px
+/// (a step's profile and the free surface beyond it), within the image.
+cv::Rect relief_area(const DrawingCurves& curves, double margin);
+
+/// One level's height in mesh units: `percent` of the drawn part's width (`area`, px, at
+/// `pixel_size` mesh units per pixel), so that one script suits any DPI and scale.
+double relief_step_height(double percent, const cv::Rect& area, double pixel_size);
+
+struct ReliefGridParams {
+  double margin = 4;              // px: the step's half-width (Step width)
+  double cell = 0;                // px between the grid's vertices; 0: automatic (drawing_cell)
+  long max_vertices = 4000000;    // the automatic spacing is coarsened so the grid stays under this
+  double pixel_size = 1;          // mesh units per pixel
+};
+
+struct ReliefGrid {
+  cv::Rect area;                  // px: relief_area
+  double cell = 0;                // px between the grid's vertices
+  double wanted_cell = 0;         // px: the automatic spacing before coarsening (= cell when none)
+  double wanted_vertices = 0;     // the vertices the wanted spacing would have made
+  TriMesh grid;                   // drawing_grid over the area, z = 0, mesh units
+  std::vector<Vec2> pixel;        // per grid vertex: where it lies in the image (px, y down)
+  bool coarsened() const { return cell > wanted_cell; }
+};
+
+/// The plane grid a relief on a plane or a cylinder is built on: over relief_area, one vertex every
+/// `cell` px (the user's, or drawing_cell's unless the grid would pass max_vertices: then the
+/// spacing that fills the area with max_vertices), each vertex's pixel beside it.
+ReliefGrid relief_grid(const DrawingCurves& curves, const DrawingInterpretation& interpretation, const ReliefGridParams& params);
+
 // ---- the drawing's curves and levels on the relief (relief_layers.cpp) ---------------------
 
 /// The curves as polylines in the drawing's plane, in mesh units (image x right, y up, z 0; one

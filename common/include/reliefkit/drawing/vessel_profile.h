@@ -8,8 +8,13 @@
 // missing base or rim) the revolved wall ends there too, nothing is invented.
 //
 // Reading the drawing: the ink (Otsu's threshold) without specks (stippling, dust); the pen width
-// (the median width of the strokes); the axis (the longest vertical straight line near the
-// middle of the drawn width, else that middle); the section: among the closed regions between
+// (the median width of the strokes); the vessel's piece of the drawing (a large connected drawing
+// with what lies beside it and what mirrors it, the one mirroring best — a frame round a figure
+// panel, a base section drawn apart below, labels and further vessels on the page are left out and
+// counted; when it is no vessel profile, the next is tried); the axis (the line
+// about which the piece's outer edges mirror, row by row — a half-section's exterior mirrors its
+// section — taken at a drawn vertical line there when there is one; else the longest drawn
+// vertical line near the middle, else that middle); the section: among the closed regions between
 // strokes (outlined sections), the solid ink (filled sections) and the ink with its hatching closed
 // (hatched sections), the region lying on one side of the axis that borders the paper around the
 // vessel over the longest stretch for its thickness — a wall is long and thin. When no region
@@ -30,7 +35,7 @@
 namespace reliefkit {
 
 enum class VesselSide { Auto, Left, Right };
-enum class VesselAxisSource { Given, DrawnLine, MiddleOfDrawing };
+enum class VesselAxisSource { Given, DrawnLine, MirroredEdges, MiddleOfDrawing };
 enum class VesselSectionKind { Filled, Hatched, Outlined, ProfileLine };
 
 struct VesselParams {
@@ -50,13 +55,23 @@ struct VesselProfile {
   VesselAxisSource axis_source = VesselAxisSource::Given;
   double axis_x = 0;          // px
   double pen_width = 0;       // px, the median stroke width
-  double wall_thickness = 0;  // px: the section's area over half its perimeter (0 for a profile line)
+  double wall_thickness = 0;  // px: the median width of the section across its medial axis (0 for a profile line)
   double top_y = 0, bottom_y = 0;  // px: the vessel's highest and lowest drawn point
   double rim_radius = 0;      // px: the widest radius in the top tenth of the height
   double max_radius = 0;      // px
   double axis_gap = 0;        // px: the least distance of the wall from the axis (0: the base closes on it)
   double mirrored_rows = 0;   // share of the rows inked on both sides whose outer edges mirror about the axis
+  double profile_coverage = 1;  // share of the rows whose outer edges mirror about the axis that the profile spans
+  cv::Rect piece;             // px: the part of the drawing read (the vessel's piece)
+  int pieces_left_out = 0;    // separate drawings beside it left out (a base drawn apart, labels, other vessels)
+  int other_vessels = 0;      // of those, pieces about as large as the vessel's (a page of several vessels)
+  bool frame_left_out = false;  // a frame round the figure was left out
+  int piece_rank = 0;         // 0: the best candidate piece was the vessel; k: the k before it were no vessel profiles
 };
+
+/// What a user must be told of a profile read: lines starting "Warning:" (part of the drawn
+/// profile not covered, other vessels on the page) and notes (pieces left out). Empty when none.
+std::vector<std::string> vessel_log_lines(const VesselProfile& profile);
 
 /// The vessel's profile read from a drawing (grey, colour or RGBA; dark lines on light paper).
 /// Throws InputError saying what was found when the image holds no ink, no axis can be placed, or
