@@ -385,6 +385,16 @@ void apply_relief(FilterCall& call) {
   call.log(shading_and_outlines(d.curves, di.shading_curves) +
            QString(" Free surface held within half a step of its region's level at %1 vertices.")
                .arg(thousands(r.relief.bounded_vertices)));
+  for (const FlatObject& o : flat_objects(d.curves, di))
+    call.log(QString("Warning: the drawn object at x %1-%2, y %3-%4 px stays at the paper's level over %5 % of its inside: "
+                     "its outline is open to the paper where no line was found (or it has an opening). Look at the "
+                     "curves layer; raise Outline gaps closed, or give the gap's curves a direction in the "
+                     "interpretation file.")
+                 .arg(o.box.x)
+                 .arg(o.box.x + o.box.width)
+                 .arg(o.box.y)
+                 .arg(o.box.y + o.box.height)
+                 .arg(std::lround(100 * o.flat_share)));
 }
 
 }  // namespace

@@ -397,4 +397,29 @@ void require_rising_regions(const DrawingCurves& curves, const DrawingInterpreta
   throw InputError(msg.str());
 }
 
+std::vector<FlatObject> flat_objects(const DrawingCurves& curves, const DrawingInterpretation& di, double min_share) {
+  std::vector<FlatObject> flat;
+  if (curves.objects.empty() || curves.objects.size() != di.regions.size()) return flat;
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(curves.objects, labels, stats, centroids, 8, CV_32S);
+  std::vector<long> inside(size_t(n), 0), ground(size_t(n), 0);
+  for (int y = 0; y < labels.rows; ++y)
+    for (int x = 0; x < labels.cols; ++x) {
+      const int l = labels.at<int>(y, x), r = di.regions.at<int>(y, x);
+      if (l <= 0 || r < 0 || r >= int(di.region_height.size())) continue;
+      ++inside[size_t(l)], ground[size_t(l)] += di.region_height[size_t(r)] == 0;
+    }
+  int largest = 0;
+  for (int l = 1; l < n; ++l) largest = std::max(largest, stats.at<int>(l, cv::CC_STAT_AREA));
+  for (int l = 1; l < n; ++l) {  // labels and marks beside the objects aside
+    if (stats.at<int>(l, cv::CC_STAT_AREA) < std::max(400.0, 0.02 * largest) || inside[size_t(l)] == 0) continue;
+    const double share = double(ground[size_t(l)]) / double(inside[size_t(l)]);
+    if (share > min_share)
+      flat.push_back({cv::Rect(stats.at<int>(l, cv::CC_STAT_LEFT), stats.at<int>(l, cv::CC_STAT_TOP),
+                               stats.at<int>(l, cv::CC_STAT_WIDTH), stats.at<int>(l, cv::CC_STAT_HEIGHT)),
+                      share});
+  }
+  return flat;
+}
+
 }  // namespace reliefkit

@@ -83,6 +83,7 @@ int close_object_outlines(DrawingCurves& dc, const cv::Mat& ink, double radius, 
     throw InputError("close_object_outlines: the ink must be the drawing's (CV_8U, same size).");
   // Distance to the structure curves' centre lines (shading strokes bound no region).
   const cv::Mat silhouettes = object_silhouettes(ink, radius), dist = curve_distance(dc, dc.shading, false);
+  dc.objects = silhouettes;
   // The contour runs along the ink's edge: half a stroke's width beside a curve that follows it.
   const float near = float(kNearCurve + 0.5 * stroke_width);
   std::vector<std::vector<cv::Point>> contours;

@@ -598,3 +598,24 @@ TEST(DrawingRelief, ProjectionOntoABaseLayer) {
   EXPECT_LE(e.rms, 5e-8);
   EXPECT_LE(e.worst, 1e-7);
 }
+
+// A drawn object whose outline the curves leave open (a gap of 40 px: its inside leaks to the
+// paper and stays at the ground's level) is reported with the share that stays flat; closed, it
+// is not.
+TEST(DrawingInterpretation, AnObjectLeftFlatByAGapInItsOutlineIsReported) {
+  DrawingCurves open;
+  open.width = 300, open.height = 200;
+  open.curves.push_back({Vec2(60, 50), Vec2(240, 50), Vec2(240, 150), Vec2(60, 150), Vec2(60, 110)});  // 40 px open
+  open.line_width.push_back(2), open.shading.push_back(0);
+  open.objects = cv::Mat::zeros(200, 300, CV_8U);
+  cv::rectangle(open.objects, cv::Point(59, 49), cv::Point(241, 151), cv::Scalar(255), cv::FILLED);
+  const auto flat = flat_objects(open, interpret_drawing(open));
+  ASSERT_EQ(flat.size(), 1u);
+  EXPECT_GT(flat[0].flat_share, 0.95);
+  EXPECT_NEAR(flat[0].box.x, 59, 1);
+  DrawingCurves closed = open;
+  closed.curves[0].push_back(Vec2(60, 50));
+  EXPECT_TRUE(flat_objects(closed, interpret_drawing(closed)).empty());
+  closed.objects.release();  // objects not known: nothing said
+  EXPECT_TRUE(flat_objects(closed, interpret_drawing(closed)).empty());
+}

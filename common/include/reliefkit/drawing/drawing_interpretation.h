@@ -80,6 +80,17 @@ DrawingInterpretation interpret_drawing(const DrawingCurves& curves, const Inter
 /// The regions above the ground (level > 0).
 int rising_regions(const DrawingInterpretation& di);
 
+/// A drawn object part of whose inside stays at the ground's level.
+struct FlatObject {
+  cv::Rect box;             // px
+  double flat_share = 0;    // of its inside (off the curves) in level-0 regions
+};
+/// The drawn objects (DrawingCurves::objects of 400 px^2 and 2 % of the largest or more: labels and
+/// marks aside) whose inside lies in level-0 regions
+/// over more than `min_share` of it: their outline is open to the paper where the curves left a gap
+/// (or they have an opening). Empty when the objects are not known (no outline completion).
+std::vector<FlatObject> flat_objects(const DrawingCurves& curves, const DrawingInterpretation& di, double min_share = 0.1);
+
 /// A relief needs a region above the ground. Throws InputError when none rises, saying what the
 /// drawing gave (curves, regions, curves between no two regions) and what to change — a flat
 /// plane is never returned as a relief. `line_scale_px`: the line scale the curves were found at.

@@ -44,6 +44,8 @@ struct DrawingCurves {
   long long line_points = 0;              // before linking
   long long dropped_short = 0;            // curves dropped as shorter than min_length
   int outline_pieces = 0;                 // curves added along objects' outlines (close_object_outlines)
+  cv::Mat objects;                        // CV_8U, 255 inside a drawn object (its ink closed, holes filled:
+                                          // close_object_outlines); empty when not found
   double total_length() const;
 };
 
