@@ -6,16 +6,18 @@
 # each drawing beside its result with the same table (drawing_corpus.md there): the drawings' terms
 # do not allow them in the repository.
 #
-#   scripts/drawing-corpus.sh [CORPUS] [OUT]
+#   scripts/drawing-corpus.sh [CORPUS] [OUT] [PAGE]
 #
 # CORPUS (default ../shared/data/drawings/corpus) holds one folder per kind (pottery, lithics,
-# other); OUT (default build/drawing-corpus) the batch outputs. The held-out part — never tuned
+# other); OUT (default build/drawing-corpus) the batch outputs; PAGE (default docs/drawing_corpus.md)
+# the table. The held-out part — never tuned
 # on — is the first 30 % (rounded up) of each kind in the order of the SHA-1 of the file names,
 # so any corpus is split the same way, before anything is run.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 corpus="$(cd "${1:-$here/../shared/data/drawings/corpus}" && pwd)"
 out="${2:-$here/build/drawing-corpus}"
+page="${3:-$here/docs/drawing_corpus.md}"
 batch="$here/build/prefix/bin/reliefkit-batch"
 score="$here/build/bench/score_drawing_corpus"
 [ -x "$batch" ] && [ -x "$score" ] || bash "$here/scripts/build.sh" --target prefix --target score_drawing_corpus
@@ -41,4 +43,4 @@ for kind in "$corpus"/*/; do
 done
 
 "$score" --corpus "$corpus" --results "$out" --held-out "$out/held-out.txt" \
-  --page "$here/docs/drawing_corpus.md" --pictures "$out/pictures" | tee "$out/scores.txt"
+  --page "$page" --pictures "$out/pictures" | tee "$out/scores.txt"

@@ -335,7 +335,7 @@ TEST(DrawingFilters, APlateRisesWithItsShadingInItsOwnLayer) {
   std::printf("[plate crop through meshlabserver] shading %d, outline pieces %d, %s regions rise, levels 0 to %d; heights "
               "%.3f to %.3f steps; shading layer %zu edges; engraved: lowest %.3f steps; unticked: %d shading\n",
               found[0].first, found[0].second, m[2].str().c_str(), top, *lo / step, *hi / step, shading.edges.size(),
-              deepest / step, found[2].first);
+              deepest / step, found.back().first);
   EXPECT_GE(found[0].first, 300);
   EXPECT_GE(found[0].second, 20);
   EXPECT_GE(std::stoi(m[2]), 14);
@@ -343,7 +343,7 @@ TEST(DrawingFilters, APlateRisesWithItsShadingInItsOwnLayer) {
   EXPECT_LE(*hi / step, top + 0.5 + 2e-3);
   EXPECT_GT(shading.edges.size(), 1000u);
   EXPECT_LT(deepest / step, -0.1);
-  EXPECT_EQ(found[2].first, 0);
+  EXPECT_EQ(found.back().first, 0);  // the last run's (meshlabserver repeats the log as it goes)
 }
 
 TEST(DrawingFilters, BadInputStopsWithAClearMessage) {
