@@ -101,20 +101,14 @@ cv::Mat relief_picture(const cv::Mat& drawing, const reliefkit::TriMesh& m, cons
 cv::Mat vessel_picture(const cv::Mat& drawing, const reliefkit::TriMesh& m, double pixel_mm) {
   cv::Mat out = colour_of(drawing);
   out = out * 0.45 + cv::Scalar::all(140);
-  std::map<int, double> widest;
-  double xs = 0, zs = 0, lo = 1e300, hi = -1e300, zlo = 1e300, zhi = -1e300;
-  for (const auto& v : m.vertices) lo = std::min(lo, v.x()), hi = std::max(hi, v.x()), zlo = std::min(zlo, v.z()), zhi = std::max(zhi, v.z());
-  xs = 0.5 * (lo + hi), zs = 0.5 * (zlo + zhi);
-  for (const auto& v : m.vertices) {
-    const int row = int(std::lround(-v.y() / pixel_mm));
-    const double r = std::hypot(v.x() - xs, v.z() - zs) / pixel_mm;
-    widest[row] = std::max(widest[row], r);
-  }
+  const rktest::VesselFrame f = rktest::vessel_frame(m, pixel_mm, drawing.rows);  // what the check measures
+  const double axis = f.axis_x / pixel_mm;
   const int t = std::max(2, drawing.rows / 150);
-  for (const auto& [row, r] : widest)
+  for (size_t row = 0; row < f.radius.size(); ++row)
     for (double side : {-1.0, 1.0})
-      cv::circle(out, cv::Point(int(std::lround(xs / pixel_mm + side * r)), row), t, cv::Scalar(30, 30, 220), cv::FILLED);
-  cv::line(out, cv::Point(int(xs / pixel_mm), 0), cv::Point(int(xs / pixel_mm), out.rows - 1), cv::Scalar(200, 60, 0), t);
+      if (!std::isnan(f.radius[row]))
+        cv::circle(out, cv::Point(int(std::lround(axis + side * f.radius[row])), int(row)), t, cv::Scalar(30, 30, 220), cv::FILLED);
+  cv::line(out, cv::Point(int(axis), 0), cv::Point(int(axis), out.rows - 1), cv::Scalar(200, 60, 0), t);
   return out;
 }
 

@@ -192,15 +192,6 @@ ReliefScore score_relief(const cv::Mat& drawing, const reliefkit::TriMesh& relie
   return s;
 }
 
-namespace {
-
-struct VesselFrame {
-  double axis_x = 0, axis_z = 0;  // mesh units
-  std::vector<double> radius;     // per image row: the widest wall there (NaN: none)
-};
-
-// The vessel's axis (the middle of its extent across: a surface of revolution is symmetric) and its
-// widest radius at each image row, from the mesh's edges crossing the row's height.
 VesselFrame vessel_frame(const reliefkit::TriMesh& m, double pixel_mm, int rows) {
   VesselFrame f;
   double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
@@ -225,6 +216,8 @@ VesselFrame vessel_frame(const reliefkit::TriMesh& m, double pixel_mm, int rows)
     for (int k = 0; k < 3; ++k) mark(m.vertices[size_t(t[size_t(k)])], m.vertices[size_t(t[size_t((k + 1) % 3)])]);
   return f;
 }
+
+namespace {
 
 // The pieces of the drawing the vessel was made from: the connected ink (closed over 3 px) with at
 // least half of it within the vessel's extent (grown by a tenth), each whole.

@@ -58,6 +58,14 @@ struct VesselScore {
   std::string cause;
 };
 
+/// A vessel's axis (the middle of its extent across: a surface of revolution is symmetric) and its
+/// widest radius at each image row (px; NaN where it has no wall), from the edges crossing the row.
+struct VesselFrame {
+  double axis_x = 0, axis_z = 0;  // mesh units
+  std::vector<double> radius;     // per image row
+};
+VesselFrame vessel_frame(const reliefkit::TriMesh& vessel, double pixel_mm, int rows);
+
 /// Pass: coverage ≥ 0.9, median ≤ 0.02, 90th percentile ≤ 0.05.
 VesselScore score_vessel(const cv::Mat& drawing, const reliefkit::TriMesh& vessel, double pixel_mm);
 

@@ -654,16 +654,19 @@ std::vector<int> mirrored_rows_of(const cv::Mat& ink, double axis, const InkBox&
   return state;
 }
 
-// The share of the rows inked on both sides that mirror about the axis.
-double mirror_agreement(const cv::Mat& ink, double axis, const InkBox& box) {
+// The share of the rows inked on both sides that mirror about the axis (mirrored_rows_of's states).
+double agreement_of(const std::vector<int>& state) {
   long rows = 0, agree = 0;
-  for (int s : mirrored_rows_of(ink, axis, box)) rows += s >= 0, agree += s == 1;
+  for (int s : state) rows += s >= 0, agree += s == 1;
   return rows ? double(agree) / double(rows) : 0;
 }
 
+double mirror_agreement(const cv::Mat& ink, double axis, const InkBox& box) {
+  return agreement_of(mirrored_rows_of(ink, axis, box));
+}
+
 // The share of the mirrored rows (where the exterior is drawn on both sides) the profile spans.
-double profile_coverage(const cv::Mat& ink, const VesselProfile& p, const InkBox& box) {
-  const std::vector<int> state = mirrored_rows_of(ink, p.axis_x, box);
+double coverage_of(const std::vector<int>& state, const VesselProfile& p) {
   long mirrored = 0, spanned = 0;
   for (size_t y = 0; y < state.size(); ++y)
     if (state[y] == 1) ++mirrored, spanned += double(y) >= p.top_y - p.pen_width && double(y) <= p.bottom_y + p.pen_width;
@@ -708,8 +711,9 @@ void require_vessel_drawing(VesselProfile& p, const cv::Mat& ink, const InkBox& 
                      std::to_string(int(p.bottom_y - p.top_y)) + " of " + std::to_string(box.height()) +
                      " px): the drawing does not look like a vessel's half-section. Crop it to one vessel, or give the "
                      "axis position and the section side.");
-  p.mirrored_rows = mirror_agreement(ink, p.axis_x, box);
-  p.profile_coverage = profile_coverage(ink, p, box);
+  const std::vector<int> state = mirrored_rows_of(ink, p.axis_x, box);  // one scan for both figures
+  p.mirrored_rows = agreement_of(state);
+  p.profile_coverage = coverage_of(state, p);
   const bool drawn_axis = drawn_axis_rows >= 0.8 * (p.bottom_y - p.top_y);
   if (axis_given || drawn_axis) return;
   if (p.mirrored_rows >= kMinMirrorAgreement) {
