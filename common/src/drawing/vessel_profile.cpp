@@ -55,7 +55,11 @@ cv::Mat disc(double radius) {
 // What a vessel drawing must show (require_vessel_drawing): a profile over at least this share of
 // the drawing's height, and (axis found) at least this share of mirrored rows.
 constexpr double kMinProfileHeightShare = 0.25;
+// A dash of a dashed wall (join_dashes) is at most this share of the drawing's larger side (or 15 pens).
+constexpr double kMaxDashShare = 0.05;
 constexpr double kMinMirrorAgreement = 0.6;
+// With a drawn axis line the exterior may be drawn carelessly (warned), but not mirror at all.
+constexpr double kMinMirrorWithDrawnAxis = 0.25;
 
 // ---- the axis ----------------------------------------------------------------------------------
 
@@ -124,13 +128,23 @@ RowEdges row_edges(const cv::Mat& ink, const InkBox& box) {
   return e;
 }
 
+// Whether row y's outermost inks on the left and the right are one stroke (a section filled
+// across, a base): such a row says nothing of where the drawing mirrors.
+bool one_stroke_across(const cv::Mat& ink, const RowEdges& e, size_t y) {
+  const uchar* row = ink.ptr<uchar>(int(y));
+  int x = e.left[y];
+  while (x < e.right[y] && row[x + 1]) ++x;
+  return x >= e.right[y];
+}
+
 // The line about which the rows' outer edges mirror: the most common midpoint of a row's outermost
-// ink (rows wider than four pens), within a window of two pens or 1 % of the width.
-double mirror_line(const RowEdges& e, const InkBox& box, double pen) {
+// ink (rows wider than four pens, not one stroke across), within a window of two pens or 1 % of the width.
+double mirror_line(const cv::Mat& ink, const RowEdges& e, const InkBox& box, double pen) {
   const int bins = 2 * box.width();
   std::vector<double> count(size_t(bins), 0);
   for (size_t y = 0; y < e.left.size(); ++y)
-    if (e.left[y] >= 0 && e.right[y] - e.left[y] >= 4 * pen) count[size_t(e.left[y] + e.right[y] - 2 * box.x0)] += 1;
+    if (e.left[y] >= 0 && e.right[y] - e.left[y] >= 4 * pen && !one_stroke_across(ink, e, y))
+      count[size_t(e.left[y] + e.right[y] - 2 * box.x0)] += 1;
   const int window = int(std::ceil(2 * std::max(2 * pen, 0.01 * box.width())));
   double best = -1, sum = 0;
   int mode = bins / 2;
@@ -168,7 +182,7 @@ bool thin_line(const cv::Mat& ink, double x, double pen) {
 // 4 % of the drawing's height; else that middle. Returns the drawn line's inked rows (0: none).
 int place_axis(const cv::Mat& ink, const InkBox& box, VesselProfile& p) {
   const int min_rows = int(std::max(10.0, 0.04 * box.height()));
-  const double mirror = mirror_line(row_edges(ink, box), box, p.pen_width);
+  const double mirror = mirror_line(ink, row_edges(ink, box), box, p.pen_width);
   if (mirror_agreement(ink, mirror, box) >= kMinMirrorAgreement) {
     const double near = std::max(3 * p.pen_width, 0.015 * box.width());
     const VerticalLine line = longest_vertical_line(ink, box, mirror - near, mirror + near, mirror, 2 * near);
@@ -296,7 +310,7 @@ PieceGroup group_round(const Pieces& pc, const std::vector<uchar>& skip, int mai
     for (int x = g.box.x; x < g.box.x + g.box.width; ++x)
       g.ink.at<uchar>(y, x) = g.keep[size_t(pc.labels.at<int>(y, x))] ? ink.at<uchar>(y, x) : 0;
   const InkBox box = ink_box(g.ink);
-  g.agreement = mirror_agreement(g.ink, mirror_line(row_edges(g.ink, box), box, pen), box);
+  g.agreement = mirror_agreement(g.ink, mirror_line(g.ink, row_edges(g.ink, box), box, pen), box);
   return g;
 }
 
@@ -405,6 +419,9 @@ long outer_rows(const SectionScene& s, const Candidate& c) {
 // are thicker at the rim or foot, as the shared bowl's lip; the bowl's exterior sherd and a jar's
 // exterior half drawn as a closed region are thicker than this: VesselProfile.* read them so).
 constexpr double kMaxThicknessShare = 0.1;
+// A section filled black is a section by the drawing's convention (an exterior half is not filled):
+// a short thick rim sherd's section is thicker than a wall, up to this share.
+constexpr double kMaxFilledThicknessShare = 0.25;
 
 
 // Scores a region: on one side of the axis, the rows in which it is the drawing's outer edge on
@@ -433,7 +450,8 @@ void score_candidate(const SectionScene& s, Candidate& c) {
         ++contact;
   const long outer = outer_rows(s, c), side_rows = s.side_rows[c.side == VesselSide::Left ? 0 : 1];
   c.outer = double(outer) * c.weight, c.thinness = contact / std::max(1.0, 2 * max_radius);
-  if (outer >= std::max(10.0, 0.25 * double(side_rows)) && 2 * max_radius <= kMaxThicknessShare * contact) c.score = c.outer;
+  const double max_share = c.kind == VesselSectionKind::Filled ? kMaxFilledThicknessShare : kMaxThicknessShare;
+  if (outer >= std::max(10.0, 0.25 * double(side_rows)) && 2 * max_radius <= max_share * contact) c.score = c.outer;
 }
 
 // The labelled regions of `labels` (their stats) that are large enough, each as a candidate: the
@@ -715,7 +733,14 @@ void require_vessel_drawing(VesselProfile& p, const cv::Mat& ink, const InkBox& 
   p.mirrored_rows = agreement_of(state);
   p.profile_coverage = coverage_of(state, p);
   const bool drawn_axis = drawn_axis_rows >= 0.8 * (p.bottom_y - p.top_y);
-  if (axis_given || drawn_axis) return;
+  if (axis_given) return;
+  if (drawn_axis) {
+    const long both_sides = std::count_if(state.begin(), state.end(), [](int s) { return s >= 0; });
+    if (both_sides < 0.25 * (p.bottom_y - p.top_y) || p.mirrored_rows >= kMinMirrorWithDrawnAxis) return;
+    throw InputError("The drawing is not symmetric about the vertical line drawn at x = " + std::to_string(int(p.axis_x)) +
+                     " px: " + percent(p.mirrored_rows) + " of the rows drawn on both sides of it mirror (an arrow, a "
+                     "ridge of a stone tool?). Not a pottery profile — or a careless drawing: then give the axis position.");
+  }
   if (p.mirrored_rows >= kMinMirrorAgreement) {
     if (p.axis_source == VesselAxisSource::DrawnLine || rim_line_across(ink, p)) return;
     throw InputError("The drawing does not look like a vessel's half-section: its outer edges mirror about x = " +
@@ -847,6 +872,7 @@ VesselProfile read_vessel_profile(const cv::Mat& image, const VesselParams& para
   p.pen_width = pen_width_of(ink);
   drop_specks(ink, int(std::ceil(std::max(3 * p.pen_width, 0.006 * std::max(ink.cols, ink.rows)))));
   cv::morphologyEx(ink, ink, cv::MORPH_CLOSE, disc(0.5 * p.pen_width + 1));
+  p.dash_gaps_joined = join_dashes(ink, p.pen_width, std::max(15 * p.pen_width, kMaxDashShare * std::max(ink.cols, ink.rows)));
   if (cv::countNonZero(ink) == 0) throw InputError("The drawing holds only specks of ink (dots, dust): no vessel profile in it.");
   if (!std::isnan(params.axis_x)) {  // the user's axis: the whole drawing
     p.piece = cv::boundingRect(ink);
@@ -882,6 +908,9 @@ std::vector<std::string> vessel_log_lines(const VesselProfile& p) {
   if (p.pieces_left_out > 0 || p.frame_left_out)
     lines.push_back("Left out: " + std::to_string(p.pieces_left_out) + " separate pieces beside the vessel's drawing (" + where +
                     ": a base drawn apart, labels, dashes)" + (p.frame_left_out ? " and a frame round the figure." : "."));
+  if (p.dash_gaps_joined > 0)
+    lines.push_back("Note: " + std::to_string(p.dash_gaps_joined) + " gaps between dashes joined: a line drawn dashed (a "
+                    "reconstructed wall) is read as a line.");
   if (p.profile_coverage < 0.9)
     lines.push_back("Warning: the vessel covers " + percent(p.profile_coverage) + " of the heights at which the drawing's "
                     "exterior is drawn on both sides of the axis: the section read is shorter than the drawn profile.");

@@ -163,3 +163,19 @@ TEST(LineDrawing, DrawingFilesThatCannotBeReadAreNamed) {
   EXPECT_LE(double(read.rows) * read.cols, kMaxDrawingPixels);
   EXPECT_NEAR(read.cols, 8000 * f, 1.0);
 }
+
+// A dashed line (12 px dashes, 8 px gaps) is joined into one line; hatching (12 px strokes side by
+// side, 6 px apart) and a short stroke pointing across a line are left as they are.
+TEST(LineDrawing, DashesOfALineAreJoinedAndHatchingIsNot) {
+  cv::Mat ink = cv::Mat::zeros(200, 240, CV_8U);
+  for (int x = 20; x + 12 <= 220; x += 20) cv::line(ink, {x, 40}, {x + 11, 40}, cv::Scalar(255), 2);
+  for (int x = 20; x <= 120; x += 6) cv::line(ink, {x, 100}, {x, 111}, cv::Scalar(255), 2);
+  cv::line(ink, {20, 170}, {220, 170}, cv::Scalar(255), 2);  // a line, and a dash pointing at it from above
+  cv::line(ink, {150, 140}, {150, 158}, cv::Scalar(255), 2);
+  const cv::Mat before = ink.clone();
+  const int joins = join_dashes(ink, 2, 30);
+  cv::Mat labels;
+  EXPECT_EQ(cv::connectedComponents(ink.rowRange(30, 50), labels, 8), 2);  // the paper and one line
+  EXPECT_EQ(cv::countNonZero(ink.rowRange(60, 200) != before.rowRange(60, 200)), 0);
+  EXPECT_EQ(joins, 2 * 9);  // each of the 9 gaps from both sides
+}

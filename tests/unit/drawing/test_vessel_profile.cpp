@@ -271,3 +271,60 @@ TEST(VesselProfile, DrawingsThatAreNotVesselsAreRefused) {
   EXPECT_NE(message("lithic_replica_1.png").find("not symmetric about the axis"), std::string::npos);
   EXPECT_NE(message("cuneiform_P102630_obverse.png").find("does not look like a vessel"), std::string::npos);
 }
+
+// A wall drawn dashed where it is reconstructed (an outlined section whose two lines are dashed, 20
+// px dashes and 16 px gaps, over rows 200-330): the dashes are joined and the whole wall is read.
+TEST(VesselProfile, AWallDrawnDashedIsReadWhole) {
+  VesselDrawingOptions o;
+  o.style = SectionStyle::Outlined;
+  rktest::VesselDrawing d = rktest::vessel_drawing(o);
+  for (int y = 200; y < 330; ++y)
+    if ((y - 200) % 36 >= 20) d.image.row(y).colRange(0, int(d.axis_x) - 5).setTo(cv::Scalar(255));
+  const VesselProfile p = read(d);
+  SCOPED_TRACE(vessel_summary(p, 1, "px"));
+  EXPECT_NE(p.kind, VesselSectionKind::ProfileLine);
+  EXPECT_GT(p.dash_gaps_joined, 0);
+  EXPECT_GE(p.profile_coverage, 0.97);
+  EXPECT_LE(fit(revolve_vessel_profile(p, {}), p, d.section).worst(), 0.01 * d.height);
+  EXPECT_TRUE(has_line(p, "Note: "));
+}
+
+// A rim sherd as pages of them draw it: a short, thick section filled black (45 px thick, 120 px
+// high), the rim line, the exterior drawn for 24 px only and the axis line beside them; below the
+// exterior the rows hold the section alone, which mirrors about its own middle — not the axis.
+TEST(VesselProfile, AThickRimSherdSectionFindsItsAxis) {
+  cv::Mat img(300, 700, CV_8UC1, cv::Scalar(255));
+  const double axis = 400;
+  auto outer = [](int y) { return 150 + 0.0005 * (y - 60) * (y - 60); };  // the section's outer edge
+  std::vector<cv::Point> section, exterior;
+  for (int y = 60; y <= 180; y += 4) section.emplace_back(int(outer(y)), y);
+  for (int y = 180; y >= 60; y -= 4) section.emplace_back(int(outer(y)) + 45, y);
+  for (int y = 60; y <= 84; y += 4) exterior.emplace_back(int(2 * axis - outer(y)), y);
+  cv::fillPoly(img, std::vector<std::vector<cv::Point>>{section}, cv::Scalar(0), cv::LINE_AA);
+  cv::polylines(img, std::vector<std::vector<cv::Point>>{exterior}, false, cv::Scalar(0), 2, cv::LINE_AA);
+  cv::line(img, {180, 60}, {int(2 * axis - outer(60)), 60}, cv::Scalar(0), 2);
+  cv::line(img, {int(axis), 50}, {int(axis), 90}, cv::Scalar(0), 1);
+  const VesselProfile p = read_vessel_profile(img, {});
+  SCOPED_TRACE(vessel_summary(p, 1, "px"));
+  EXPECT_NEAR(p.axis_x, axis, 1.5);
+  EXPECT_EQ(p.kind, VesselSectionKind::Filled);
+  EXPECT_NEAR(p.rim_radius, axis - outer(60), 2);
+}
+
+// A drawn vertical line between two filled shapes that do not mirror about it (the arrows on a stone
+// tool's scars: a filled arrowhead beside another arrow's shaft; a line across the top makes them one
+// piece) is no axis and section: refused.
+TEST(VesselProfile, ADrawnLineBetweenShapesThatDoNotMirrorIsNoAxis) {
+  cv::Mat img(300, 400, CV_8UC1, cv::Scalar(255));
+  cv::line(img, {200, 40}, {200, 260}, cv::Scalar(0), 2);
+  cv::fillPoly(img, std::vector<std::vector<cv::Point>>{{{150, 50}, {60, 250}, {185, 250}}}, cv::Scalar(0));
+  cv::rectangle(img, {215, 50}, {330, 250}, cv::Scalar(0), cv::FILLED);
+  cv::line(img, {60, 45}, {330, 45}, cv::Scalar(0), 2);  // one piece
+  std::string message = "no error";
+  try {
+    read_vessel_profile(img, {});
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("not symmetric about the vertical line drawn"), std::string::npos) << message;
+}

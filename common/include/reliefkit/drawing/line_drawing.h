@@ -65,6 +65,13 @@ std::vector<float> stroke_widths(const cv::Mat& ink);
 /// The `share` quantile (0-1) of stroke widths; 0 for none.
 double stroke_width_percentile(std::vector<float> widths, double share);
 
+/// A dashed line's dashes joined into one line (a reconstructed wall, a hidden edge): a dash is a
+/// stroke (8-connected ink) at most `max_length` px long and 2.5 times as long as it is wide (and as
+/// `pen`); each of its ends is drawn (`pen` wide) to the nearest ink ahead of it — within 1.5 dash
+/// lengths (at least 4 pens), 20 degrees of its direction — when that ink runs the same way (another
+/// dash, or a line's end, within 30 degrees): not to a stroke it points at across. Returns the joins.
+int join_dashes(cv::Mat& ink, double pen, double max_length);
+
 /// The scale at which the default threshold min_strength holds; at another scale sigma the
 /// threshold is scale-normalised (min_strength x (kReferenceScale / sigma)^2).
 constexpr double kReferenceScale = 2.0;

@@ -66,6 +66,7 @@ struct VesselProfile {
   int pieces_left_out = 0;    // separate drawings beside it left out (a base drawn apart, labels, other vessels)
   int other_vessels = 0;      // of those, pieces about as large as the vessel's (a page of several vessels)
   bool frame_left_out = false;  // a frame round the figure was left out
+  int dash_gaps_joined = 0;     // gaps of dashed lines joined (a wall drawn dashed where it is reconstructed)
   int piece_rank = 0;         // 0: the best candidate piece was the vessel; k: the k before it were no vessel profiles
 };
 
