@@ -141,7 +141,8 @@ int join_dashes(cv::Mat& ink, double pen, double max_length) {
     for (double sign : {-1.0, 1.0}) {
       const Vec2 end = end_of(st.pixels[l], s, sign);
       std::vector<cv::Point> tried;
-      for (const auto& [d, q] : ink_ahead(st, int(l), end, sign * s.direction, reach)) {
+      for (const auto& found : ink_ahead(st, int(l), end, sign * s.direction, reach)) {
+        const cv::Point q = found.second;  // (a structured binding cannot be captured in C++17)
         if (int(tried.size()) == kMaxPartnersTried) break;
         if (std::any_of(tried.begin(), tried.end(), [&](cv::Point t) { return cv::norm(t - q) < pen + 1; })) continue;
         tried.push_back(q);
