@@ -51,18 +51,19 @@ Vec2 end_of(const std::vector<Vec2>& pixels, const StrokeShape& s, double sign) 
 // The direction of the stroke through `at` (an ink pixel), unsigned: of its pixels within `steps`
 // (8-connected) of it, so that a line running beside it does not count.
 Vec2 local_direction(const cv::Mat& ink, cv::Point at, int steps) {
+  const cv::Rect window = cv::Rect(at.x - steps, at.y - steps, 2 * steps + 1, 2 * steps + 1) & cv::Rect(0, 0, ink.cols, ink.rows);
+  cv::Mat visited = cv::Mat::zeros(window.size(), CV_8U);  // the pixels `steps` can reach, not the image
   std::vector<cv::Point> front{at}, next;
   std::vector<Vec2> seen{Vec2(at.x, at.y)};
-  cv::Mat visited = cv::Mat::zeros(ink.size(), CV_8U);
-  visited.at<uchar>(at) = 1;
+  visited.at<uchar>(at - window.tl()) = 1;
   for (int step = 0; step < steps && !front.empty(); ++step, front.swap(next)) {
     next.clear();
     for (const cv::Point& q : front)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const cv::Point r(q.x + dx, q.y + dy);
-          if (r.x < 0 || r.y < 0 || r.x >= ink.cols || r.y >= ink.rows || visited.at<uchar>(r) || !ink.at<uchar>(r)) continue;
-          visited.at<uchar>(r) = 1, next.push_back(r), seen.emplace_back(r.x, r.y);
+          if (!window.contains(r) || visited.at<uchar>(r - window.tl()) || !ink.at<uchar>(r)) continue;
+          visited.at<uchar>(r - window.tl()) = 1, next.push_back(r), seen.emplace_back(r.x, r.y);
         }
   }
   return seen.size() < 3 ? Vec2::Zero() : shape_of(seen).direction;

@@ -36,6 +36,9 @@ cv::Mat ink_of(const cv::Mat& image) {
 // The pen: the 30th percentile of the stroke widths, so that a filled section does not count as a stroke.
 double pen_width_of(const cv::Mat& ink) { return std::max(1.0, stroke_width_percentile(stroke_widths(ink), 0.3)); }
 
+// A dash of a dashed wall (join_dashes) is at most this share of the drawing's larger side (or 15 pens).
+constexpr double kMaxDashShare = 0.05;
+
 // Ink blobs smaller than `max_side` both ways (stippling, dust, JPEG specks) taken out.
 void drop_specks(cv::Mat& ink, int max_side) {
   cv::Mat labels, stats, centroids;
@@ -55,8 +58,6 @@ cv::Mat disc(double radius) {
 // What a vessel drawing must show (require_vessel_drawing): a profile over at least this share of
 // the drawing's height, and (axis found) at least this share of mirrored rows.
 constexpr double kMinProfileHeightShare = 0.25;
-// A dash of a dashed wall (join_dashes) is at most this share of the drawing's larger side (or 15 pens).
-constexpr double kMaxDashShare = 0.05;
 constexpr double kMinMirrorAgreement = 0.6;
 // With a drawn axis line the exterior may be drawn carelessly (warned), but not mirror at all.
 constexpr double kMinMirrorWithDrawnAxis = 0.25;
