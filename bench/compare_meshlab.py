@@ -22,9 +22,11 @@ chapters: chapters 5 and 6 (multi-scale and prominent filters) as ratios of the 
           on a regular 1 M-face relief torus and on a decimated, irregular one.
 
 scans:    single- against multi-scale curves at defaults (build/bench/bench_multiscale_scans) on
-          the shared scans and on copies decimated by MeshLab to half their faces.
+          the shared scans, on copies decimated by MeshLab to half their faces and on irregular
+          copies (a quarter of the faces, thin triangles allowed).
 
-Usage: bench/compare_meshlab.py [accuracy] [speed] [demarcating] [ratios] [first-call] [chapters] [scans] [--sizes 100000,1000000,4000000]
+Usage: bench/compare_meshlab.py [accuracy] [speed] [demarcating] [ratios] [first-call] [chapters] [scans]
+       [--sizes 100000,1000000,4000000] [--keep DIR] [--only NAME,...]
 Needs a build (scripts/build.sh). Runs its own Xvfb.
 """
 import argparse
@@ -297,12 +299,13 @@ def first_call(display, tmp, repeats=2):
 DECIMATE = ("Simplification: Quadric Edge Collapse Decimation", None)
 
 
-def decimate(display, source, faces, out):
+def decimate(display, source, faces, out, quality=0.3):
     """MeshLab's quadric edge collapse of `source` to `faces` faces: the irregular triangles of a
-    decimated scan (long and short edges, valences 3 to 12)."""
+    decimated scan (long and short edges, valences 3 to 12). A lower `quality` threshold lets the
+    collapse leave thinner triangles."""
     params = [f'<Param type="RichInt" name="TargetFaceNum" value="{faces}"/>',
               '<Param type="RichFloat" name="TargetPerc" value="0"/>',
-              '<Param type="RichFloat" name="QualityThr" value="0.3"/>',
+              f'<Param type="RichFloat" name="QualityThr" value="{quality}"/>',
               '<Param type="RichBool" name="PreserveBoundary" value="false"/>',
               '<Param type="RichFloat" name="BoundaryWeight" value="1"/>',
               '<Param type="RichBool" name="PreserveNormal" value="true"/>',
@@ -358,13 +361,18 @@ def count_faces(ply):
                 return 0
 
 
-def scans(display, tmp):
-    """The multi-scale fidelity figures on the shared scans and on decimated (irregular) copies."""
+def scans(display, tmp, only=None):
+    """The multi-scale fidelity figures on the shared scans, on copies decimated to half their faces
+    and on irregular copies (a quarter of the faces, thin triangles allowed: quality threshold 0.05)."""
     meshes = []
     for name, ply in shared_scans(tmp):
+        if only and not any(o in name for o in only):
+            continue
         half = os.path.join(tmp, name + "_decimated.ply")
         decimate(display, ply, count_faces(ply) // 2, half)
-        meshes += [ply, half]
+        irregular = os.path.join(tmp, name + "_irregular.ply")
+        decimate(display, ply, count_faces(ply) // 4, irregular, quality=0.05)
+        meshes += [ply, half, irregular]
     subprocess.run([os.path.join(BUILD, "bench", "bench_multiscale_scans")] + meshes, check=True)
 
 
@@ -372,13 +380,17 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("what", nargs="*", default=["accuracy", "speed", "demarcating"])
     ap.add_argument("--sizes", default="100000,1000000,4000000")
+    ap.add_argument("--keep", help="keep the meshes made (converted scans, decimated copies) in this folder")
+    ap.add_argument("--only", help="scans: only those whose names contain one of these (comma-separated)")
     a = ap.parse_args()
     for f in (SERVER, MAKE):
         if not os.path.exists(f):
             sys.exit(f"{f} missing: build first (scripts/build.sh)")
     xv, display = start_xvfb()
     try:
-        with tempfile.TemporaryDirectory() as tmp:
+        with tempfile.TemporaryDirectory() as scratch:
+            tmp = a.keep or scratch
+            os.makedirs(tmp, exist_ok=True)
             print(f"CPU threads: {os.cpu_count()}")
             if "accuracy" in a.what:
                 accuracy(display, tmp)
@@ -389,7 +401,7 @@ def main():
             if "chapters" in a.what:
                 chapters(display, tmp)
             if "scans" in a.what:
-                scans(display, tmp)
+                scans(display, tmp, a.only.split(",") if a.only else None)
             if "speed" in a.what:
                 speed(display, tmp, [int(s) for s in a.sizes.split(",")])
             if "demarcating" in a.what:

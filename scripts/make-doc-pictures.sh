@@ -5,7 +5,9 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="$here/build/doc-pictures"; mkdir -p "$out"
-scans=("$here/examples/data/penny.ply" "$here/../shared/data/meshes/fertility.obj" "$here/../shared/data/meshes/stanford-bunny.obj")
+shared="$here/../shared/data/meshes"
+scans=("$here/examples/data/penny.ply" "$shared/fertility.obj" "$shared/stanford-bunny.obj"
+       "$shared/cycladic_figurine_torso.ply" "$shared/oxhide_ingot.ply")
 for scan in "${scans[@]}"; do
   [ -f "$scan" ] || { echo "skipping $scan (missing)"; continue; }
   if [ "${scan##*.}" = "obj" ]; then

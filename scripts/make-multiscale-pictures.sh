@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Re-makes the pictures of docs/multiscale.md: on every shared scan (the coin, the statuette, the
-# bunny), the single-scale filters (examples/relief_edges.mlx) beside the multi-scale ones
+# Re-makes the pictures of docs/multiscale.md: on the shared scans (the coin, the statuette, the
+# bunny, the Cycladic torso, the oxhide ingot), the single-scale filters (examples/relief_edges.mlx) beside the multi-scale ones
 # (examples/multiscale.mlx), all at their defaults, shown in the real MeshLab GUI under a virtual
 # display (scripts/screenshot.sh). Run scripts/make-doc-pictures.sh first (it makes the shaded
 # scans and the single-scale pictures docs/img/scan_<scan>_{relief,ridges}.png).
@@ -10,9 +10,14 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="$here/build/doc-pictures"; mkdir -p "$out"
 source "$here/scripts/picture-helpers.sh"
 img="$here/docs/img"
-for name in penny fertility bunny; do
+for name in penny fertility bunny cycladic oxhide; do
   src="$out/$name.ply"
-  case "$name" in penny) src="$here/examples/data/penny.ply" ;; bunny) src="$out/stanford-bunny.ply" ;; esac
+  case "$name" in
+    penny) src="$here/examples/data/penny.ply" ;;
+    bunny) src="$out/stanford-bunny.ply" ;;
+    cycladic) src="$here/../shared/data/meshes/cycladic_figurine_torso.ply" ;;
+    oxhide) src="$here/../shared/data/meshes/oxhide_ingot.ply" ;;
+  esac
   [ -f "$out/${name}_shaded.ply" ] || { echo "missing $out/${name}_shaded.ply: run scripts/make-doc-pictures.sh" >&2; exit 1; }
   "$here/scripts/meshlabserver" -i "$src" -o "$out/${name}_ms_ridges.obj" -l 1 -o "$out/${name}_ms_valleys.obj" -l 2 \
     -o "$out/${name}_ms_relief.obj" -l 3 -s "$here/examples/multiscale.mlx" >"$out/${name}_multiscale.log" 2>&1

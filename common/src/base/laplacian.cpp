@@ -15,8 +15,8 @@ LaplacianResult cotangent_laplacian(const TriMesh& mesh, const MeshTopology& top
   LaplacianResult r;
   const int nv = mesh.n_vertices();
   const long nf = static_cast<long>(mesh.faces.size());
-  // Half cotangent of each corner's angle (the weight of the opposite edge); a degenerate face
-  // gets zeros everywhere.
+  // Half cotangent of each corner's angle (the weight of the opposite edge); a degenerate face or
+  // a sliver (kSliverAreaRatio) gets zeros everywhere.
   std::vector<std::array<double, 3>> half_cot;
   sized(half_cot, size_t(nf));
   long long degenerate = 0;
@@ -30,7 +30,8 @@ LaplacianResult cotangent_laplacian(const TriMesh& mesh, const MeshTopology& top
       const Vec3 b = mesh.vertices[f[(j + 2) % 3]] - mesh.vertices[f[j]];
       const double s = a.cross(b).norm();
       w[j] = 0.5 * a.dot(b) / s;
-      if (!(s > 0) || !std::isfinite(w[j])) ok = false;
+      const double longest = std::max({a.squaredNorm(), b.squaredNorm(), (b - a).squaredNorm()});
+      if (!(s > kSliverAreaRatio * longest) || !std::isfinite(w[j])) ok = false;
       if (opt.clamp_negative && w[j] < 0) w[j] = 0;
     }
     if (!ok) {

@@ -139,16 +139,9 @@ std::vector<double> noise_tilt_at_scales(const OptimalScale& s, double final_smo
   return tilt;
 }
 
-void add_other_scale(Polylines& curves, const Polylines& other, OtherScale side, const OptimalScale& scale,
-                     double min_length) {
-  const double h = scale.scale.edge;
-  std::vector<char> add = segments_near(other, curves, kSameEdgeEdges * h);
-  for (size_t k = 0; k < add.size(); ++k) {
-    const auto [a, b] = other.point_edge[other.segments[k][0]];
-    // The finest reading only where a fine scale was selected; the optimal scale's everywhere.
-    const bool fine = std::min(scale.sigma[a], scale.sigma[b]) <= kFineScaleEdges * h;
-    add[k] = !add[k] && (fine || side == OtherScale::Wider);
-  }
+void add_other_scale(Polylines& curves, const Polylines& other, double edge, double min_length) {
+  std::vector<char> add = segments_near(other, curves, kSameEdgeEdges * edge);
+  for (char& k : add) k = !k;
   append_curves(curves, drop_short_chains(select_segments(other, add), min_length));
 }
 
@@ -185,11 +178,12 @@ void add_finest_scale_lines(const Surface& surface, RidgeValleyParams params, co
   Polylines lines[2] = {finest.ridges, finest.valleys};
   for (int valleys : {0, 1}) {
     for (double& x : lines[valleys].strength) x *= sigma * sigma * h;
-    drop_blurred_flanks(lines[valleys], valleys ? multi.ridges : multi.valleys, finest.presmoothing, multi.min_length);
+    drop_blurred_flanks(lines[valleys], valleys ? multi.ridges : multi.valleys,
+                        finest.presmoothing, multi.min_length);
   }
   for (int valleys : {0, 1}) {
     Polylines& wider = valleys ? multi.valleys : multi.ridges;
-    add_other_scale(lines[valleys], wider, OtherScale::Wider, scale, multi.min_length);
+    add_other_scale(lines[valleys], wider, h, multi.min_length);
     wider = std::move(lines[valleys]);
   }
 }
@@ -210,7 +204,7 @@ void add_finest_scale_edges(const Surface& surface, ReliefEdgeParams params, con
   const ReliefEdgeResult finest = compute_relief_edges(surface, params, guidance);
   Polylines edges = finest.edges;
   drop_blurred_flanks(edges, multi.edges, finest.presmoothing, multi.min_length);
-  add_other_scale(multi.edges, edges, OtherScale::Finest, scale, multi.min_length);
+  add_other_scale(multi.edges, edges, scale.scale.edge, multi.min_length);
 }
 
 MultiscaleReliefEdges multiscale_relief_edges(const Surface& surface, OptimalScaleOptions opt,

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <Eigen/Eigenvalues>
+
 #include "reliefkit/base/laplacian.h"
 #include "reliefkit/base/smoothing.h"
 #include "shapes.h"
@@ -34,6 +36,20 @@ TEST(Laplacian, SymmetricRowsSumToZeroAndLinearPrecision) {
   EXPECT_NEAR(r.M.sum(), 4.0, 1e-9);  // mixed areas sum to the surface area
   // Negative semi-definite.
   EXPECT_LE(quad.dot(r.L * quad), 1e-12);
+}
+
+// A sliver's cotangents are huge differences of huge numbers; in rounding they left the Laplacian
+// indefinite (the oxhide ingot's scale space diverged). A sliver adds nothing to the stiffness.
+TEST(Laplacian, ASliverFaceIsLeftOutOfTheStiffness) {
+  TriMesh m;
+  // Triangle A B D split at C, which lies 1e-9 off the edge AB: face ABC is a sliver.
+  m.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 1e-9, 0), Vec3(0.5, 1, 0)};
+  m.faces = {{0, 1, 2}, {1, 3, 2}, {2, 3, 0}};
+  const LaplacianResult r = cotangent_laplacian(m);
+  EXPECT_EQ(r.degenerate_faces, 1);
+  EXPECT_EQ(r.L.coeff(0, 1), 0.0);  // edge AB lies only in the sliver (its weight was -2.5e8)
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(-Eigen::MatrixXd(r.L));
+  EXPECT_GE(eig.eigenvalues().minCoeff(), -1e-9);
 }
 
 TEST(Laplacian, SphereMeanCurvatureNormal) {

@@ -296,15 +296,11 @@ TEST(Multiscale, CurveStrengthIsNormalisedAtTheSmallerScaleOfItsEdge) {
   EXPECT_NEAR(c2.strength[1], 3.0 * 6 * 1e-4, 1e-15);
 }
 
-// How the two readings join (add_other_scale): a curve of the other reading within
-// kSameEdgeEdges of one already drawn is the same feature; the finest reading's curves come in
-// only where the optimal scale is fine, the optimal scale's anywhere.
+// How the two readings join: a curve of the other reading within kSameEdgeEdges of one already
+// drawn is the same feature (add_other_scale), whatever scale was selected there; the finest
+// reading's curves within kFlankReach x its pre-smoothing of the optimal scale's are its blurred
+// flanks (drop_blurred_flanks).
 TEST(Multiscale, ReadingsJoinWhereEachScaleIsMeant) {
-  OptimalScale scale;
-  scale.scale.edge = 1;
-  // Vertices 0-9: a fine scale; 10-19: a wide one.
-  scale.sigma.assign(20, 0.5 * kFineScaleEdges);
-  for (int v = 10; v < 20; ++v) scale.sigma[v] = 2 * kFineScaleEdges;
   auto piece = [](double y, int first_vertex) {
     Polylines c;
     for (int i = 0; i <= 10; ++i) {
@@ -316,14 +312,18 @@ TEST(Multiscale, ReadingsJoinWhereEachScaleIsMeant) {
     for (int i = 0; i < 10; ++i) c.segments.push_back({i, i + 1}), c.segment_face.push_back(0);
     return c;
   };
-  const Polylines drawn = piece(0, 0);
-  Polylines other = piece(0.5 * kSameEdgeEdges, 0);     // the same feature
-  append_curves(other, piece(10, 0));                   // a fine-scale area's own curve
-  append_curves(other, piece(20, 10));                  // a wide-scale area's own curve
-  Polylines with_finest = drawn;
-  add_other_scale(with_finest, other, OtherScale::Finest, scale, 0);
-  EXPECT_NEAR(with_finest.total_length(), 20, 1e-9);    // drawn + the fine area's
-  Polylines with_wider = drawn;
-  add_other_scale(with_wider, other, OtherScale::Wider, scale, 0);
-  EXPECT_NEAR(with_wider.total_length(), 30, 1e-9);     // drawn + both areas' own curves
+  Polylines drawn = piece(0, 0);
+  append_curves(drawn, piece(100, 10));
+  Polylines other = piece(0.5 * kSameEdgeEdges, 0);  // the same feature
+  append_curves(other, piece(40, 0));                // a curve of its own
+  Polylines joined = drawn;
+  add_other_scale(joined, other, 1.0, 0);
+  EXPECT_NEAR(joined.total_length(), 30, 1e-9);  // drawn + the curve of its own
+  // The finest reading, pre-smoothing 1 edge length: pieces 1.5 and 3 edge lengths from drawn curves.
+  const double presmoothing = 1;
+  Polylines finest = piece(1.5, 0);
+  append_curves(finest, piece(103, 10));
+  drop_blurred_flanks(finest, drawn, presmoothing, 0);
+  EXPECT_NEAR(finest.total_length(), 10, 1e-9);  // the nearer piece was a flank
+  EXPECT_NEAR(finest.points.front().y(), 103, 1e-12);
 }

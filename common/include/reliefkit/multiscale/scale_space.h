@@ -10,7 +10,9 @@
 // the boundary polyline, edge-length weights), then the interior is solved with the boundary as
 // fixed values — so an open scan does not shrink inwards from its rim and both systems stay
 // symmetric positive definite. Vertices on non-manifold boundaries and isolated vertices stay
-// in place.
+// in place. A small hole's loop contracts under the 1-D flow: its edges count as at least a tenth
+// of their input length (kShortestLoopEdge in scale_space.cpp), so its system stays conditioned;
+// slivers the flow folds are left out of the stiffness (kSliverAreaRatio, laplacian.h).
 // The solves go through reliefkit/base/solvers.h (conjugate gradients warm-started from the previous
 // level, or Cholesky for wide steps). Small scales are cheaper by explicit (forward Euler) steps
 // within their stability limit — a few sparse products where an implicit step needs a solve: with
@@ -65,7 +67,8 @@ using ScaleSpaceVisitor = std::function<void(int level, const Surface& smoothed)
 /// visit(level, the surface at that scale) in order. Each level is surface.with_positions(...):
 /// the run's topology, scale and noise, its own normals and Laplacian (the next level's operator
 /// when `reweight`); the first step takes the input surface's Laplacian. Throws InputError for a
-/// mesh without faces or scales that are not positive and increasing.
+/// mesh without faces, scales that are not positive and increasing, or a step whose system could
+/// not be solved (its residual above what a zero step leaves: never a silently wrong level).
 ScaleSpaceReport scale_space(const Surface& surface, const std::vector<double>& sigmas,
                              const ScaleSpaceOptions& options, const ScaleSpaceVisitor& visit);
 /// The same over a mesh of the caller's (tests, benchmarks).
