@@ -7,7 +7,7 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="$here/build/doc-pictures"; mkdir -p "$out"
 shared="$here/../shared/data/meshes"
 scans=("$here/examples/data/penny.ply" "$shared/fertility.obj" "$shared/stanford-bunny.obj"
-       "$shared/cycladic_figurine_torso.ply" "$shared/oxhide_ingot.ply")
+       "$shared/cycladic_figurine_torso.ply" "$shared/oxhide_ingot.ply" "$shared/gargoyle.ply")
 for scan in "${scans[@]}"; do
   [ -f "$scan" ] || { echo "skipping $scan (missing)"; continue; }
   if [ "${scan##*.}" = "obj" ]; then

@@ -10,13 +10,14 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="$here/build/doc-pictures"; mkdir -p "$out"
 source "$here/scripts/picture-helpers.sh"
 img="$here/docs/img"
-for name in penny fertility bunny cycladic oxhide; do
+for name in penny fertility bunny cycladic oxhide gargoyle; do
   src="$out/$name.ply"
   case "$name" in
     penny) src="$here/examples/data/penny.ply" ;;
     bunny) src="$out/stanford-bunny.ply" ;;
     cycladic) src="$here/../shared/data/meshes/cycladic_figurine_torso.ply" ;;
     oxhide) src="$here/../shared/data/meshes/oxhide_ingot.ply" ;;
+    gargoyle) src="$here/../shared/data/meshes/gargoyle.ply" ;;
   esac
   [ -f "$out/${name}_shaded.ply" ] || { echo "missing $out/${name}_shaded.ply: run scripts/make-doc-pictures.sh" >&2; exit 1; }
   "$here/scripts/meshlabserver" -i "$src" -o "$out/${name}_ms_ridges.obj" -l 1 -o "$out/${name}_ms_valleys.obj" -l 2 \
