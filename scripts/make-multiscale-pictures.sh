@@ -4,13 +4,15 @@
 # (examples/multiscale.mlx), all at their defaults, shown in the real MeshLab GUI under a virtual
 # display (scripts/screenshot.sh). Run scripts/make-doc-pictures.sh first (it makes the shaded
 # scans and the single-scale pictures docs/img/scan_<scan>_{relief,ridges}.png).
+# Usage: scripts/make-multiscale-pictures.sh [NAME ...]  (default: all of them)
 # Output: docs/img/scan_<scan>_ms_{relief,ridges}.png and the pairs scan_<scan>_pair_{relief,ridges}.png.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="$here/build/doc-pictures"; mkdir -p "$out"
 source "$here/scripts/picture-helpers.sh"
 img="$here/docs/img"
-for name in penny fertility bunny cycladic oxhide gargoyle; do
+names=("$@"); [ ${#names[@]} -gt 0 ] || names=(penny fertility bunny cycladic oxhide gargoyle)
+for name in "${names[@]}"; do
   src="$out/$name.ply"
   case "$name" in
     penny) src="$here/examples/data/penny.ply" ;;
