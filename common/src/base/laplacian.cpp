@@ -25,12 +25,14 @@ LaplacianResult cotangent_laplacian(const TriMesh& mesh, const MeshTopology& top
     const auto& f = mesh.faces[i];
     std::array<double, 3> w{};
     bool ok = true;
+    double longest = 0;  // the face's longest edge, squared (the sliver test's scale)
+    for (int j = 0; j < 3; ++j)
+      longest = std::max(longest, (mesh.vertices[f[(j + 1) % 3]] - mesh.vertices[f[j]]).squaredNorm());
     for (int j = 0; j < 3; ++j) {
       const Vec3 a = mesh.vertices[f[(j + 1) % 3]] - mesh.vertices[f[j]];
       const Vec3 b = mesh.vertices[f[(j + 2) % 3]] - mesh.vertices[f[j]];
       const double s = a.cross(b).norm();
       w[j] = 0.5 * a.dot(b) / s;
-      const double longest = std::max({a.squaredNorm(), b.squaredNorm(), (b - a).squaredNorm()});
       if (!(s > kSliverAreaRatio * longest) || !std::isfinite(w[j])) ok = false;
       if (opt.clamp_negative && w[j] < 0) w[j] = 0;
     }

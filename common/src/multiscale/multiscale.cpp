@@ -178,8 +178,7 @@ void add_finest_scale_lines(const Surface& surface, RidgeValleyParams params, co
   Polylines lines[2] = {finest.ridges, finest.valleys};
   for (int valleys : {0, 1}) {
     for (double& x : lines[valleys].strength) x *= sigma * sigma * h;
-    drop_blurred_flanks(lines[valleys], valleys ? multi.ridges : multi.valleys,
-                        finest.presmoothing, multi.min_length);
+    drop_blurred_flanks(lines[valleys], valleys ? multi.ridges : multi.valleys, finest.presmoothing, multi.min_length);
   }
   for (int valleys : {0, 1}) {
     Polylines& wider = valleys ? multi.valleys : multi.ridges;
