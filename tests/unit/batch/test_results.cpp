@@ -119,3 +119,24 @@ TEST(BatchSupervisor, CrashesAndMemoryAreRecordedAndTheRunGoesOn) {
   EXPECT_TRUE(tagged);
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 30.0);
 }
+
+// A supervisor bigger than a worker's share (an instrumented test binary is): each worker is
+// measured as its own program from its first reading, never as the copy of the supervisor a fork
+// makes before it runs the worker.
+TEST(BatchSupervisor, AWorkerIsMeasuredAsItselfNotAsACopyOfALargeSupervisor) {
+  const std::string out = fresh_dir("rk_batch_large_supervisor");
+  const std::vector<char> ballast(size_t(200) << 20, 1);  // 200 MiB, resident
+  RunOptions o;
+  o.jobs = 2;
+  o.memory_cap_mib = 2 * 60;
+  o.worker = {"/bin/sh", "-c", "echo started; echo done", "sh", out};
+  o.output = out;
+  o.shard = "0/1";
+  std::vector<Job> jobs;
+  for (int k = 0; k < 20; ++k) jobs.push_back({"/x/f" + std::to_string(k) + ".ply", "f" + std::to_string(k) + ".ply"});
+  const auto results = run_jobs(jobs, o, [](const std::string&) {});
+  int stopped = 0;
+  for (const auto& r : results) stopped += r.status == "memory";
+  EXPECT_EQ(stopped, 0);
+  EXPECT_EQ(ballast.back(), 1);
+}
