@@ -12,14 +12,16 @@ namespace reliefkit {
 void normalise_curve_strengths(Polylines& curves, const OptimalScale& scale, double gamma, int power) {
   const double h = scale.scale.edge;
   const int np = static_cast<int>(curves.points.size());
+  const double finest = scale.levels.empty() ? 0.0 : scale.levels.front();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < np; ++i) {
     const auto [a, b] = curves.point_edge[i];
     const double w = curves.point_weight[i];
     (void)w;
     // The smaller scale of the edge's two ends: where the scale changes quickly (a fine feature
-    // next to smooth ground), the larger one would amplify the finer side's curvature.
-    const double s = std::min(scale.sigma[a], scale.sigma[b]) / h;
+    // next to smooth ground), the larger one would amplify the finer side's curvature. The scale
+    // the smoothed surface holds there (smoothed_ratio x σ, at least the smallest level).
+    const double s = std::max(scale.smoothed_ratio * std::min(scale.sigma[a], scale.sigma[b]), finest) / h;
     curves.strength[i] *= std::pow(s * s, gamma) * std::pow(h, power);
   }
 }

@@ -379,7 +379,8 @@ void assemble_smoothed(const Surface& surface, const OptimalScaleOptions& opt, c
   const double u_min = levels.log_edges.front(), u_max = levels.log_edges.back();
 #pragma omp parallel for schedule(static)
   for (int v = 0; v < nv; ++v) {
-    const double u = out.sigma[v] > 0 ? std::clamp(std::log(out.sigma[v] / h), u_min, u_max) : u_min;
+    const double sigma = out.smoothed_ratio * out.sigma[v];
+    const double u = sigma > 0 ? std::clamp(std::log(sigma / h), u_min, u_max) : u_min;
     const ScaleBracket b = bracket_scale(levels.log_edges, u);
     const int k = b.lower, k1 = b.upper;
     const double tau = 0.5 * b.mix(levels.sigma[k] * levels.sigma[k], levels.sigma[k1] * levels.sigma[k1]);
@@ -468,6 +469,8 @@ void limit_scale_growth(const Surface& surface, double slope, std::vector<double
 
 }  // namespace
 
+double ridge_detection_ratio(double gamma) { return std::sqrt((1.5 - gamma) / gamma); }
+
 OptimalScale optimal_scale(const Surface& surface, const OptimalScaleOptions& opt) {
   surface.require_triangles();
   opt.validate();
@@ -506,6 +509,7 @@ OptimalScale optimal_scale(const Surface& surface, const OptimalScaleOptions& op
   }
   if (opt.smoothed_surface) {
     if (opt.progress) opt.progress(93, "Optimal scale: optimally smoothed surface");
+    out.smoothed_ratio = relief ? 1.0 : ridge_detection_ratio(gamma);
     assemble_smoothed(surface, opt, levels, base, ls, out);
     out.base_shape = std::move(base.shape);
     out.base_normal = std::move(base.normal);

@@ -22,10 +22,11 @@ struct MultiscaleReliefEdges {
   double noise_angle = 0;    // the smallest per-vertex noise tilt (at the largest scale; radians)
 };
 
-/// Multiplies each curve point's strength by (σ / h)^{2γ} h^power, σ the smaller scale of the two
-/// ends of the point's edge (the larger would amplify a fine feature's curvature where the scale
-/// changes across the edge): the strength normalised as in the scale selection, unit-free for
-/// power = 1 (curvature) or 2 (curvature derivative).
+/// Multiplies each curve point's strength by (σ / h)^{2γ} h^power, σ the scale the smoothed surface
+/// holds at the smaller scale of the two ends of the point's edge (OptimalScale::smoothed_ratio x
+/// it, at least the smallest level; the larger end would amplify a fine feature's curvature where
+/// the scale changes across the edge): the strength normalised as in the scale selection,
+/// unit-free for power = 1 (curvature) or 2 (curvature derivative).
 void normalise_curve_strengths(Polylines& curves, const OptimalScale& scale, double gamma, int power);
 
 /// Curves (chains at least the minimum length) must be this share of the strength noise reaches
