@@ -7,6 +7,7 @@
 
 #include "reliefkit/base/cubic_form.h"
 #include "reliefkit/base/memory.h"
+#include "reliefkit/base/noise_patch.h"
 
 namespace reliefkit {
 namespace {
@@ -96,11 +97,11 @@ double noise_curve_strength(const NoiseEstimate& noise, double presmoothing_edge
   if (!(noise.relative > kCleanNoise) || !std::isfinite(noise.relative) ||
       !(presmoothing_edges >= 0 && presmoothing_edges <= 100))
     return 0;
-  const TriMesh patch = noise_patch(noise.relative, n);
-  ScaledCurvature sc = curvature_at_scale(patch, Length::in_edges(presmoothing_edges), estimator, nullptr);
+  const NoisePatch patch = make_noise_patch(noise.relative, n);
+  ScaledCurvature sc = curvature_at_scale(*patch.surface, Length::in_edges(presmoothing_edges), estimator, nullptr);
   const CurvatureGradient g = curvature_gradient(sc.curvature);
   DemarcatingOptions o;
-  const Polylines all = demarcating_curves(patch, sc.curvature, g, o);
+  const Polylines all = demarcating_curves(patch.surface->mesh(), sc.curvature, g, o);
   const int margin = noise_patch_margin(presmoothing_edges);
   const double unit = sc.scale.edge;  // patch edge -> strengths per edge length squared
   return kNoiseCurveFactor * percentile(interior_segment_strengths(all, n, margin), kNoiseCurvePercentile) * unit * unit;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 
 #include "reliefkit/base/curve_selection.h"
 #include "reliefkit/multiscale/scale_selection.h"
@@ -122,13 +121,12 @@ std::vector<double> noise_tilt_at_scales(const OptimalScale& s, double final_smo
   const int nl = static_cast<int>(s.levels.size()), nv = static_cast<int>(s.sigma.size());
   const bool noisy = s.noise.relative > 0 && std::isfinite(s.noise.relative);  // else noise_tilt is 0
   const int cells = noise_patch_cells(faces);
-  const std::optional<Surface> patch =
-      noisy ? std::optional<Surface>(s.noise_patch.carrying(s.noise.relative, cells)) : std::nullopt;
+  const NoisePatch patch = noisy ? s.noise_patch.carrying(s.noise.relative, cells) : NoisePatch{};
   std::vector<double> level_tilt(static_cast<size_t>(nl)), u(static_cast<size_t>(nl));
   for (int k = 0; k < nl; ++k) {
     u[k] = std::log(s.levels[k] / h);
     // The level's smoothing and the final one, as Gaussian widths add.
-    const double tilt = patch ? noise_tilt(*patch, cells, std::hypot(s.levels[k] / h, final_smoothing_edges)) : 0.0;
+    const double tilt = patch ? noise_tilt(patch, std::hypot(s.levels[k] / h, final_smoothing_edges)) : 0.0;
     level_tilt[k] = std::max(tilt, 1e-12);
   }
   std::vector<double> tilt(static_cast<size_t>(nv), level_tilt.front());
@@ -167,11 +165,10 @@ void add_finest_scale_lines(const Surface& surface, RidgeValleyParams params, co
   params.presmoothing = Length::automatic();
   // The run's noise patch where it carries the scan's noise (above kCleanNoise a floor is measured).
   const double noise = surface.noise().relative;
-  const std::optional<Surface> patch =
-      noise > kCleanNoise && std::isfinite(noise)
-          ? std::optional<Surface>(scale.noise_patch.carrying(noise, noise_patch_cells(surface.mesh().n_faces())))
-          : std::nullopt;
-  const RidgeValleyResult finest = compute_ridges_valleys(surface, params, patch ? &*patch : nullptr);
+  const NoisePatch patch = noise > kCleanNoise && std::isfinite(noise)
+                               ? scale.noise_patch.carrying(noise, noise_patch_cells(surface.mesh().n_faces()))
+                               : NoisePatch{};
+  const RidgeValleyResult finest = compute_ridges_valleys(surface, params, patch);
   const double h = surface.scale().edge;
   // The finest lines' strengths as the multi-scale ones' ((σ / h)² |k| h, γ = 1), σ their
   // pre-smoothing, at least the smallest scale of the range.
@@ -196,12 +193,9 @@ void add_finest_scale_edges(const Surface& surface, ReliefEdgeParams params, con
   params.presmoothing = Length::automatic();
   // The scan's noise tilt measured on the run's noise patch (when it carries the scan's noise).
   ReliefEdgeGuidance guidance;
-  const int cells = noise_patch_cells(surface.mesh().n_faces());
   const double noise = surface.noise().relative;
-  const std::optional<Surface> patch =
-      noise > 0 && std::isfinite(noise) ? std::optional<Surface>(scale.noise_patch.carrying(noise, cells)) : std::nullopt;
-  guidance.noise_patch = patch ? &*patch : nullptr;
-  guidance.noise_patch_cells = cells;
+  if (noise > 0 && std::isfinite(noise))
+    guidance.noise_patch = scale.noise_patch.carrying(noise, noise_patch_cells(surface.mesh().n_faces()));
   const ReliefEdgeResult finest = compute_relief_edges(surface, params, guidance);
   Polylines edges = finest.edges;
   drop_blurred_flanks(edges, multi.edges, finest.presmoothing, multi.min_length);

@@ -52,11 +52,6 @@ double relief_edge_strength(const CurvatureDerivative& C) {
   return best;
 }
 
-Surface NoisePatch::carrying(double relative, int n) const {
-  if (surface && relative == relative_noise && n == cells) return *surface;
-  return Surface(noise_patch(relative, n));
-}
-
 void place_on_mesh(const TriMesh& mesh, Polylines& curves) {
   const int np = static_cast<int>(curves.points.size());
 #pragma omp parallel for schedule(static)
@@ -217,10 +212,7 @@ std::vector<double> noise_percentiles(const LevelStrengths& ls, const Levels& le
 // selected twice their width and lost 20 % recall.)
 void measure_noise_floor(const Surface& surface, const OptimalScaleOptions& opt, int nl, OptimalScale& out) {
   out.noise = surface.noise();
-  out.noise_patch.relative_noise = std::max(out.noise.relative, kMinScaleNoise);
-  out.noise_patch.cells = noise_patch_cells(surface.n_faces());
-  out.noise_patch.surface =
-      std::make_shared<const Surface>(noise_patch(out.noise_patch.relative_noise, out.noise_patch.cells));
+  out.noise_patch = make_noise_patch(std::max(out.noise.relative, kMinScaleNoise), noise_patch_cells(surface.n_faces()));
   const Surface& patch = *out.noise_patch.surface;
   OptimalScaleOptions po = opt;
   po.smoothed_surface = false, po.progress = nullptr;

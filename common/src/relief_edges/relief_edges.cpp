@@ -51,16 +51,18 @@ double edge_fit_error(const CurvatureDerivative& C, double k1, double k2, double
 double noise_tilt(const NoiseEstimate& noise, double presmoothing_edges, int n) {
   if (!(noise.relative > 0) || !std::isfinite(noise.relative) || !(presmoothing_edges >= 0 && presmoothing_edges <= 100))
     return 0;
-  return noise_tilt(Surface(noise_patch(noise.relative, n)), n, presmoothing_edges);
+  return noise_tilt(make_noise_patch(noise.relative, n), presmoothing_edges);
 }
 
-double noise_tilt(const Surface& patch, int n, double presmoothing_edges) {
+double noise_tilt(const NoisePatch& patch, double presmoothing_edges) {
   if (!(presmoothing_edges >= 0 && presmoothing_edges <= 100)) return 0;
-  const ScaledCurvature sc = curvature_at_scale(patch, Length::in_edges(presmoothing_edges), CurvatureEstimator::Jet, nullptr);
+  const Surface& surface = *patch.surface;
+  const ScaledCurvature sc =
+      curvature_at_scale(surface, Length::in_edges(presmoothing_edges), CurvatureEstimator::Jet, nullptr);
   const int margin = noise_patch_margin(presmoothing_edges);
   std::vector<double> tilt;
-  for (int v = 0; v < patch.n_vertices(); ++v) {
-    if (!inside_noise_patch(v, n, margin)) continue;
+  for (int v = 0; v < surface.n_vertices(); ++v) {
+    if (!inside_noise_patch(v, patch.cells, margin)) continue;
     tilt.push_back(std::acos(std::clamp(sc.curvature.normal[v].z(), -1.0, 1.0)));
   }
   return kNoiseTiltFactor * percentile(tilt, kNoiseCurvePercentile);
@@ -222,7 +224,7 @@ std::vector<double> crossing_noise(const Polylines& all, const ReliefEdgeGuidanc
 // point has its own), else that of the estimated noise after the run's pre-smoothing.
 double least_noise_tilt(const TriMesh& mesh, const ReliefEdgeFields& r, const ReliefEdgeGuidance& guide) {
   if (guide.noise_tilt.empty() && guide.noise_patch && r.noise.relative > 0 && std::isfinite(r.noise.relative))
-    return noise_tilt(*guide.noise_patch, guide.noise_patch_cells, r.presmoothing / r.scale.edge);
+    return noise_tilt(guide.noise_patch, r.presmoothing / r.scale.edge);
   if (guide.noise_tilt.empty())
     return noise_tilt(r.noise, r.presmoothing / r.scale.edge, noise_patch_cells(mesh.n_faces()));
   double least = 0;

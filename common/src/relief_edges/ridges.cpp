@@ -77,8 +77,11 @@ double quiet_threshold(const Polylines& lines, const RidgeValleyParams& p, doubl
 
 }  // namespace
 
-RidgeStrengths noise_ridge_strengths(const Surface& patch, int n, double presmoothing_edges, const RidgeValleyParams& p) {
+RidgeStrengths noise_ridge_strengths(const NoisePatch& noise_patch, double presmoothing_edges,
+                                     const RidgeValleyParams& p) {
   if (!(presmoothing_edges >= 0 && presmoothing_edges <= 100)) return {};
+  const Surface& patch = *noise_patch.surface;
+  const int n = noise_patch.cells;
   const double edge = patch.scale().edge;
   CurvatureOptions co;  // (the patch's own noise is not needed)
   co.estimator = p.estimator;
@@ -99,12 +102,11 @@ namespace {
 // The noise floor of a scan (unit-free, see noise_ridge_strengths) on the given patch, or on one
 // made for it; zero on a clean scan.
 RidgeStrengths scan_noise_ridge_strengths(const RidgeValleyResult& r, long long faces, const RidgeValleyParams& p,
-                                          const Surface* given_patch) {
+                                          const NoisePatch& given_patch) {
   if (!(r.noise.relative > kCleanNoise) || !std::isfinite(r.noise.relative)) return {};
-  const int n = noise_patch_cells(faces);
   const double presmoothing_edges = r.presmoothing / r.scale.edge;
-  if (given_patch) return noise_ridge_strengths(*given_patch, n, presmoothing_edges, p);
-  return noise_ridge_strengths(Surface(noise_patch(r.noise.relative, n)), n, presmoothing_edges, p);
+  const NoisePatch patch = given_patch ? given_patch : make_noise_patch(r.noise.relative, noise_patch_cells(faces));
+  return noise_ridge_strengths(patch, presmoothing_edges, p);
 }
 
 }  // namespace
@@ -113,7 +115,7 @@ RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyP
   return compute_ridges_valleys(Surface::borrow(mesh), p);
 }
 
-RidgeValleyResult compute_ridges_valleys(const Surface& surface, const RidgeValleyParams& p, const Surface* noise_patch) {
+RidgeValleyResult compute_ridges_valleys(const Surface& surface, const RidgeValleyParams& p, const NoisePatch& noise_patch) {
   const TriMesh& mesh = surface.mesh();
   RidgeValleyResult r;
   static_cast<ScaledCurvature&>(r) = begin_curve_filter(surface, p);

@@ -50,6 +50,7 @@
 
 #include "reliefkit/base/curvature.h"
 #include "reliefkit/base/mesh.h"
+#include "reliefkit/base/noise_patch.h"
 #include "reliefkit/base/scale.h"
 #include "reliefkit/multiscale/scale_space.h"
 #include "reliefkit/base/solvers.h"
@@ -165,16 +166,6 @@ struct OptimalScaleOptions {
   Progress progress = nullptr;
   /// Throws InputError naming the first parameter out of its range.
   void validate() const;
-};
-
-/// A noise patch (noise_patch, reliefkit/base/scale.h) as a Surface: what the estimated noise alone
-/// draws is simulated on it. A run builds it once and every stage that simulates noise shares it.
-struct NoisePatch {
-  double relative_noise = 0;  // the noise it carries (edge lengths)
-  int cells = 0;              // its size (noise_patch_cells)
-  std::shared_ptr<const Surface> surface;
-  /// This patch when it carries `relative_noise` at this size, else a new one that does.
-  Surface carrying(double relative_noise, int cells) const;
 };
 
 struct OptimalScale {

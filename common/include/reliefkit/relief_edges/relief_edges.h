@@ -15,6 +15,7 @@
 
 #include "reliefkit/relief_edges/base_normals.h"
 #include "reliefkit/base/curvature.h"
+#include "reliefkit/base/noise_patch.h"
 #include "reliefkit/base/zero_crossings.h"
 
 namespace reliefkit {
@@ -71,10 +72,9 @@ struct ReliefEdgeGuidance {
   /// must tilt more, weak ones half as much, besides the global thresholds; the global noise
   /// tilt is then not applied.
   std::vector<double> noise_tilt;
-  /// Without noise_tilt: a noise patch of noise_patch_cells carrying the scan's estimated noise
-  /// (a run's, shared by its stages) to measure the noise tilt on instead of building one.
-  const Surface* noise_patch = nullptr;
-  int noise_patch_cells = 0;
+  /// Without noise_tilt: a noise patch carrying the scan's estimated noise (a run's, shared by
+  /// its stages) to measure the noise tilt on instead of building one; empty: none.
+  NoisePatch noise_patch;
   /// The width of the features (mesh units): the fit-error radius is at least kFitRadiusWidths x it.
   std::vector<double> feature_width;
   /// Keep only the crossings where the slope is steepest (G rising up the slope, g), not those
@@ -123,9 +123,9 @@ constexpr double kNoiseTiltFactor = 2.0;
 /// The tilt (radians) that noise of the estimated level leaves after the same pre-smoothing:
 /// kNoiseCurvePercentile of the normals' tilt on noise_patch, x kNoiseTiltFactor.
 double noise_tilt(const NoiseEstimate& noise, double presmoothing_edges, int patch_cells = 100);
-/// The same on a noise patch the caller keeps (noise_patch(noise, patch_cells) as a Surface), so that
-/// a run measuring the tilt at several pre-smoothings builds one patch.
-double noise_tilt(const Surface& patch, int patch_cells, double presmoothing_edges);
+/// The same on a noise patch the caller keeps, so that a run measuring the tilt at several
+/// pre-smoothings builds one patch.
+double noise_tilt(const NoisePatch& patch, double presmoothing_edges);
 
 /// The fit-error radius and the automatic base scale follow the features' own width (feature_width)
 /// where it spans more than a few triangles: radius at least kFitRadiusWidths x the width, base

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "reliefkit/base/curvature.h"
+#include "reliefkit/base/noise_patch.h"
 #include "reliefkit/base/zero_crossings.h"
 
 namespace reliefkit {
@@ -56,13 +57,13 @@ Polylines select_ridge_lines(const Polylines& candidates, double threshold, cons
 struct RidgeStrengths {
   double ridges = 0, valleys = 0;
 };
-RidgeStrengths noise_ridge_strengths(const Surface& patch, int n, double presmoothing_edges,
+RidgeStrengths noise_ridge_strengths(const NoisePatch& patch, double presmoothing_edges,
                                      const RidgeValleyParams& params);
 
-/// `noise_patch` (optional): noise_patch(scan's relative noise, noise_patch_cells(faces)) if the
-/// caller has one; otherwise one is made when the scan's noise is above kCleanNoise.
+/// `noise_patch` (optional): the scan's relative noise at noise_patch_cells(faces) if the caller
+/// has one; otherwise one is made when the scan's noise is above kCleanNoise.
 RidgeValleyResult compute_ridges_valleys(const Surface& surface, const RidgeValleyParams& params = {},
-                                         const Surface* noise_patch = nullptr);
+                                         const NoisePatch& noise_patch = {});
 RidgeValleyResult compute_ridges_valleys(const TriMesh& mesh, const RidgeValleyParams& params = {});
 
 }  // namespace reliefkit
