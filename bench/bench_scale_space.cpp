@@ -43,13 +43,13 @@ int main(int argc, char** argv) {
     for (size_t k = 0; k < sigmas.size(); ++k) std::printf("%.4f ", height[k] / truth(sigmas[k]));
     std::printf("(%zu solves, %s)\n", rep.solves.size(), rep.converged ? "all converged" : "NOT converged");
     // Explicit: each level from the input, as pre-smoothing does it.
-    const MeshTopology topo = mesh_topology(m);
+    const Surface surface = Surface::borrow(m);
     for (size_t k = 0; k < sigmas.size(); ++k) {
       std::vector<Vec3> x = m.vertices;
       const double t1 = rkbench::now();
-      smooth_positions(m, topo, sigmas[k], x);
+      smooth_positions(surface, sigmas[k], x);
       const double t = rkbench::now() - t1;
-      std::printf("  explicit, %2.0f edges (%5d steps) %8.2f  %.4f\n", edges[k], diffusion_steps(m, sigmas[k]), t,
+      std::printf("  explicit, %2.0f edges (%5d steps) %8.2f  %.4f\n", edges[k], diffusion_steps(surface.scale(), sigmas[k]), t,
                   x[c].z() / truth(sigmas[k]));
     }
   }

@@ -425,12 +425,11 @@ double feature_width(const TriMesh& mesh, const Curvature& c, const MeshScale& s
   return dq > 0 && std::isfinite(kq / dq) ? kq / dq : 0;
 }
 
-// compute_curvature on a mesh its caller has checked (require_triangles).
-static Curvature compute_checked_curvature(const TriMesh& input, const CurvatureOptions& opt);
+// compute_curvature on a surface its caller has checked (require_triangles).
+static Curvature compute_checked_curvature(const Surface& input, const CurvatureOptions& opt);
 
 ScaledCurvature curvature_at_scale(const Surface& surface, const Length& presmoothing, CurvatureEstimator estimator,
                                    Progress progress) {
-  const TriMesh& mesh = surface.mesh();
   surface.require_triangles();
   ScaledCurvature out;
   report(progress, 0, "Vertex adjacency");
@@ -445,8 +444,7 @@ ScaledCurvature curvature_at_scale(const Surface& surface, const Length& presmoo
   co.smoothing_scale = out.presmoothing;
   co.derivatives = true;
   co.progress = progress;
-  co.topology = out.topology.get();
-  out.curvature = compute_checked_curvature(mesh, co);  // the mesh is checked above
+  out.curvature = compute_checked_curvature(surface, co);  // the mesh is checked above
   return out;
 }
 
@@ -455,36 +453,27 @@ ScaledCurvature curvature_at_scale(const TriMesh& mesh, const Length& presmoothi
   return curvature_at_scale(Surface::borrow(mesh), presmoothing, estimator, progress);
 }
 
-Curvature compute_curvature(const TriMesh& input, const CurvatureOptions& opt) {
-  require_triangles(input);
-  return compute_checked_curvature(input, opt);
+Curvature compute_curvature(const Surface& surface, const CurvatureOptions& opt) {
+  surface.require_triangles();
+  return compute_checked_curvature(surface, opt);
 }
 
-static Curvature compute_checked_curvature(const TriMesh& input, const CurvatureOptions& opt) {
-  MeshTopology own;
-  if (!opt.topology) {
-    report(opt.progress, 0, "Vertex adjacency");
-    own.faces = vertex_faces(input);
-    if (opt.smoothing_scale > 0) own.ring = vertex_rings(input, own.faces), own.border = boundary_rings(input, own.faces);
-  }
-  const MeshTopology& topology = opt.topology ? *opt.topology : own;
-  const VertexFaces& vf = topology.faces;
+Curvature compute_curvature(const TriMesh& input, const CurvatureOptions& opt) {
+  require_triangles(input);
+  return compute_checked_curvature(Surface::borrow(input), opt);
+}
+
+static Curvature compute_checked_curvature(const Surface& input, const CurvatureOptions& opt) {
+  report(opt.progress, 0, "Vertex adjacency");
+  const VertexFaces& vf = input.topology().faces;
   // Pre-smoothing: the curvature of a diffused copy of the surface is reported at the
   // original vertices.
-  TriMesh smoothed;
-  if (opt.smoothing_scale > 0) {
-    report(opt.progress, 5, "Pre-smoothing");
-    sized(smoothed.faces, input.faces.size());
-    std::copy(input.faces.begin(), input.faces.end(), smoothed.faces.begin());
-    sized(smoothed.vertices, input.vertices.size(), Vec3(Vec3::Zero()));
-    std::copy(input.vertices.begin(), input.vertices.end(), smoothed.vertices.begin());
-    smooth_positions(input, topology, opt.smoothing_scale, smoothed.vertices);
-  }
-  const TriMesh& mesh = opt.smoothing_scale > 0 ? smoothed : input;
+  if (opt.smoothing_scale > 0) report(opt.progress, 5, "Pre-smoothing");
+  const Surface at = smoothed_surface(input, opt.smoothing_scale);
   report(opt.progress, 10, "Normals and Voronoi areas");
-  std::vector<Vec3> normals = vertex_normals(mesh, vf);
-  if (opt.estimator == CurvatureEstimator::Jet) return compute_curvature_jets(mesh, opt, vf, std::move(normals));
-  return compute_curvature_facefit(mesh, opt, vf, std::move(normals));
+  std::vector<Vec3> normals = vertex_normals(at.mesh(), vf);
+  if (opt.estimator == CurvatureEstimator::Jet) return compute_curvature_jets(at.mesh(), opt, vf, std::move(normals));
+  return compute_curvature_facefit(at.mesh(), opt, vf, std::move(normals));
 }
 
 // The per-face fit (Rusinkiewicz 2004) in four steps: a frame and II per face, II averaged at

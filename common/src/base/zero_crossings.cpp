@@ -195,8 +195,24 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
   return extract_zero_crossings(mesh, normals, view_of(field), opt);
 }
 
+// The crossings; `all_strengths` (optional) receives every crossed face's segment strength.
+static Polylines crossings(const TriMesh& mesh, const std::vector<Vec3>& normals, const DirectionalFieldView& field,
+                           const ZeroCrossingOptions& opt, std::vector<double>* all_strengths);
+
 Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& normals,
                                  const DirectionalFieldView& field, const ZeroCrossingOptions& opt) {
+  return crossings(mesh, normals, field, opt, nullptr);
+}
+
+CandidateCrossings extract_candidate_crossings(const TriMesh& mesh, const std::vector<Vec3>& normals,
+                                               const DirectionalFieldView& field, const ZeroCrossingOptions& opt) {
+  CandidateCrossings c;
+  c.lines = crossings(mesh, normals, field, opt, &c.all_strengths);
+  return c;
+}
+
+static Polylines crossings(const TriMesh& mesh, const std::vector<Vec3>& normals, const DirectionalFieldView& field,
+                           const ZeroCrossingOptions& opt, std::vector<double>* all_strengths) {
   const int nv = mesh.n_vertices(), nf = mesh.n_faces();
   if ((int)normals.size() != nv || (int)field.size != nv || !field.direction || !field.value || !field.value_along)
     throw InputError("zero-crossing extraction: per-vertex fields do not match the mesh");
@@ -208,7 +224,7 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
 #endif
   std::vector<std::vector<Crossing>> per_thread(nthreads);
   std::vector<std::vector<int>> seg_faces(nthreads);
-  std::vector<std::vector<double>> strengths(opt.all_strengths ? nthreads : 0);
+  std::vector<std::vector<double>> strengths(all_strengths ? nthreads : 0);
   long long rejected = 0;
 
 #pragma omp parallel reduction(+ : rejected)
@@ -234,7 +250,7 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
       Crossing cr[2];
       if (!face_crossings(mesh, f, val, str, cr)) continue;
       if (opt.accept_face && !opt.accept_face(fi, val, t)) continue;
-      if (opt.all_strengths) strengths[tid].push_back(0.5 * (cr[0].s + cr[1].s));
+      if (all_strengths) strengths[tid].push_back(0.5 * (cr[0].s + cr[1].s));
       if (0.5 * (cr[0].s + cr[1].s) < opt.min_strength) continue;
       int seg = static_cast<int>(sf.size());
       cr[0].slot = seg * 2;
@@ -245,9 +261,9 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
     }
   }
 
-  if (opt.all_strengths) {
-    opt.all_strengths->clear();
-    for (const auto& v : strengths) opt.all_strengths->insert(opt.all_strengths->end(), v.begin(), v.end());
+  if (all_strengths) {
+    all_strengths->clear();
+    for (const auto& v : strengths) all_strengths->insert(all_strengths->end(), v.begin(), v.end());
   }
   // Concatenate per-thread results (deterministic order) and merge points on shared edges.
   Polylines res;

@@ -74,8 +74,10 @@ CurvatureGradient curvature_gradient(const Curvature& c) {
 }
 
 
-Polylines demarcating_curves(const TriMesh& mesh, const Curvature& c, const CurvatureGradient& g,
-                             const DemarcatingOptions& opt) {
+namespace {
+
+// The field whose zero crossings along g_p are the demarcating curves, borrowing `c` and `g`.
+DirectionalFieldView demarcating_field(const Curvature& c, const CurvatureGradient& g) {
   DirectionalFieldView field;
   field.direction = g.direction.data();
   field.value = g.kappa.data();
@@ -84,12 +86,27 @@ Polylines demarcating_curves(const TriMesh& mesh, const Curvature& c, const Curv
   field.axial = false;  // g_p is a vector: opposite gradients are inconsistent
   field.value_along = [&c](int v, const Vec3& t) { return c.normal_curvature(v, t); };
   field.strength_along = [&c](int v, const Vec3& t) { return std::max(0.0, c.derivative_along(v, t)); };
+  return field;
+}
+
+ZeroCrossingOptions crossing_options(const DemarcatingOptions& opt) {
   ZeroCrossingOptions zo;
   zo.max_angle = opt.max_angle;
   zo.min_strength = opt.min_strength;
-  zo.all_strengths = opt.all_strengths;
-  Polylines p = extract_zero_crossings(mesh, c.normal, field, zo);
+  return zo;
+}
+
+}  // namespace
+
+Polylines demarcating_curves(const TriMesh& mesh, const Curvature& c, const CurvatureGradient& g,
+                             const DemarcatingOptions& opt) {
+  Polylines p = extract_zero_crossings(mesh, c.normal, demarcating_field(c, g), crossing_options(opt));
   return opt.min_length > 0 ? drop_short_chains(p, opt.min_length) : p;
+}
+
+CandidateCrossings demarcating_candidates(const TriMesh& mesh, const Curvature& c, const CurvatureGradient& g,
+                                          const DemarcatingOptions& opt) {
+  return extract_candidate_crossings(mesh, c.normal, demarcating_field(c, g), crossing_options(opt));
 }
 
 double noise_curve_strength(const NoiseEstimate& noise, double presmoothing_edges, CurvatureEstimator estimator,
@@ -132,16 +149,14 @@ DemarcatingResult compute_demarcating(const Surface& surface, const DemarcatingP
   DemarcatingOptions o;
   o.min_strength = p.relative_threshold * kNoiseFactor * r.median_strength;
   o.max_angle = p.max_angle;
-  std::vector<double> strengths;
-  o.all_strengths = &strengths;
-  Polylines candidates = demarcating_curves(mesh, r.curvature, r.gradient, o);
-  for (double x : strengths) r.strongest_crossing = std::max(r.strongest_crossing, x);
-  r.automatic_threshold = automatic_curve_threshold(r.median_strength, std::move(strengths));
+  CandidateCrossings candidates = demarcating_candidates(mesh, r.curvature, r.gradient, o);
+  for (double x : candidates.all_strengths) r.strongest_crossing = std::max(r.strongest_crossing, x);
+  r.automatic_threshold = automatic_curve_threshold(r.median_strength, std::move(candidates.all_strengths));
   r.noise_threshold = noise_curve_strength(r.noise, r.presmoothing / r.scale.edge, p.estimator,
                                            noise_patch_cells(mesh.n_faces())) / (r.scale.edge * r.scale.edge);
   r.automatic_threshold = std::max(r.automatic_threshold, r.noise_threshold);
   r.threshold = p.relative_threshold * r.automatic_threshold;
-  r.curves = drop_short_chains(keep_strong_segments(candidates, r.threshold), r.min_length);
+  r.curves = drop_short_chains(keep_strong_segments(candidates.lines, r.threshold), r.min_length);
   return r;
 }
 

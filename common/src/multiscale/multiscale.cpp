@@ -61,8 +61,7 @@ Surface optimally_smoothed(const Surface& surface, OptimalScaleOptions& opt, Opt
 MultiscaleRidgeValleys multiscale_ridges_valleys(const Surface& surface, OptimalScaleOptions opt,
                                                  RidgeValleyParams params) {
   params.validate();
-  params.weak_ratio = kConnectingWeakRatio;
-  params.link_gap_edges = kConnectingGapEdges;
+  params.linking = kConnectingLines;
   const RidgeValleyParams finest = params;
   opt.curve = ScaleStrength::RidgesValleys;
   MultiscaleRidgeValleys r;
@@ -100,7 +99,7 @@ MultiscaleRidgeValleys multiscale_ridges_valleys(const Surface& surface, Optimal
     // already the noise's 99th percentile.
     const double threshold =
         params.relative_threshold * automatic_curve_threshold(kCurveNoise * r.scale.strength_floor / kNoiseFactor, seg);
-    Polylines kept = select_ridge_lines(all, threshold, params, r.scale.scale.edge, c.min_length);
+    Polylines kept = select_ridge_lines(all, threshold, params.linking, r.scale.scale.edge, c.min_length);
     place_on_mesh(surface.mesh(), kept);
     (valleys ? c.valleys : c.ridges) = std::move(kept);
     (valleys ? c.valley_threshold : c.ridge_threshold) = threshold;

@@ -142,11 +142,10 @@ BaseSurface base_surface(const Surface& surface, const Levels& levels, const Opt
   }
   CurvatureOptions co;
   co.derivatives = false;
-  co.topology = &surface.topology();
   const int nv = surface.n_vertices();
   b.space = scale_space(surface, {factor * levels.sigma.back()}, bo, [&](int, const Surface& smoothed) {
     if (opt.progress) opt.progress(2, "Optimal scale: base surface");
-    const Curvature c = compute_curvature(smoothed.mesh(), co);
+    const Curvature c = compute_curvature(smoothed, co);
     sized(b.shape, size_t(nv));
 #pragma omp parallel for schedule(static)
     for (int v = 0; v < nv; ++v) b.shape[v] = shape_tensor(c, v);
@@ -175,10 +174,9 @@ LevelStrengths level_strengths(const Surface& surface, const Levels& levels, con
   if (opt.smoothed_surface) sized(ls.displacement, size_t(nv) * size_t(nl));
   CurvatureOptions co;
   co.derivatives = relief;
-  co.topology = &surface.topology();
   ls.space = scale_space(surface, levels.sigma, level_space_options(opt), [&](int k, const Surface& smoothed) {
     if (opt.progress) opt.progress(5 + 80 * k / nl, "Optimal scale: scale space and strengths");
-    const Curvature c = compute_curvature(smoothed.mesh(), co);
+    const Curvature c = compute_curvature(smoothed, co);
     const std::vector<Vec3>& x = smoothed.mesh().vertices;
 #pragma omp parallel for schedule(static)
     for (int v = 0; v < nv; ++v) {
@@ -383,12 +381,7 @@ void assemble_smoothed(const Surface& surface, const OptimalScaleOptions& opt, c
     out.smoothed[v] = mesh.vertices[v] + d.cast<double>() + (tau_max - tau) * rate;
   }
   std::vector<Eigen::Vector3f>().swap(ls.displacement);
-  if (opt.final_smoothing_edges > 0) {
-    TriMesh assembled;
-    assembled.faces = mesh.faces;
-    assembled.vertices = out.smoothed;
-    smooth_positions(assembled, surface.topology(), opt.final_smoothing_edges * h, out.smoothed);
-  }
+  smooth_positions(surface, opt.final_smoothing_edges * h, out.smoothed);
 }
 
 // Eq. 5.3 as a sparse SPD system in u = log(σ / h); see the header.

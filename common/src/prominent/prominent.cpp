@@ -310,13 +310,11 @@ void for_each_near(const VertexRing& ring, const std::vector<Vec3>& pos, int v, 
 
 }  // namespace
 
-std::vector<Vec3> bilateral_pass(const TriMesh& mesh, const MeshTopology& topology, const std::vector<Vec3>& positions,
-                                 double sigma_c, const std::vector<Vec3>* field) {
-  const int nv = mesh.n_vertices();
-  TriMesh current;
-  current.vertices = positions;
-  current.faces = mesh.faces;
-  const std::vector<Vec3> raw = vertex_normals(current, topology.faces);
+std::vector<Vec3> bilateral_pass(const Surface& at, double sigma_c, const std::vector<Vec3>* field) {
+  const int nv = at.n_vertices();
+  const MeshTopology& topology = at.topology();
+  const std::vector<Vec3>& positions = at.mesh().vertices;
+  const std::vector<Vec3>& raw = at.normals();
   const double sc2 = 2 * sigma_c * sigma_c, ss2 = 2 * 0.25 * sigma_c * sigma_c, sr2 = 2 * 0.16 * sigma_c * sigma_c;
   std::vector<Vec3> out(positions);
   std::vector<std::vector<int>> marks = per_thread(size_t(nv), -1);
@@ -356,13 +354,12 @@ namespace {
 
 // Step 1: the bilateral filter along the prominent field, bilateral_iterations times.
 std::vector<Vec3> bilateral_steps(const Surface& surface, const EnhanceParams& p, const EnhanceResult& out) {
-  std::vector<Vec3> pos = surface.mesh().vertices;
+  Surface step = surface;
   for (int it = 0; it < p.bilateral_iterations; ++it) {
     if (p.progress) p.progress(it * 30 / std::max(1, p.bilateral_iterations), "Bilateral filter");
-    pos = bilateral_pass(surface.mesh(), surface.topology(), pos, out.spatial_scale,
-                         p.prominent_term ? &out.field.field : nullptr);
+    step = surface.with_positions(bilateral_pass(step, out.spatial_scale, p.prominent_term ? &out.field.field : nullptr));
   }
-  return pos;
+  return step.mesh().vertices;
 }
 
 // Step 2's per-vertex state: each vertex moves along its base normal by u, between lo and hi.
@@ -395,7 +392,7 @@ FlowState flow_start(const Surface& surface, const EnhanceResult& out) {
       });
   }
   s.near = out.field.beta;  // beta diffused over sigma_c
-  diffuse(surface.mesh(), topo.ring, out.spatial_scale, s.near);
+  diffuse(surface, out.spatial_scale, s.near);
   for (auto& x : s.near) x = std::clamp(2 * x, 0.0, 1.0);
   s.u.assign(nv, 0);
   s.stopped.assign(nv, 0);
@@ -423,17 +420,15 @@ std::vector<Vec3> flow_positions(const EnhanceResult& out, const std::vector<dou
 
 // The curvature along the field at the current positions (`c`: the curvature there, for its
 // normals). Neighbours along a feature move together (the jet fits' noise made outlines jagged).
-std::vector<double> flow_curvature(const TriMesh& current, const MeshTopology& topo, const std::vector<Vec3>& field,
-                                   double h, Curvature& c) {
+std::vector<double> flow_curvature(const Surface& current, const std::vector<Vec3>& field, double h, Curvature& c) {
   CurvatureOptions co;
   co.derivatives = false;
-  co.topology = &topo;
   c = compute_curvature(current, co);
   const int nv = current.n_vertices();
   std::vector<double> kp(nv);
 #pragma omp parallel for schedule(static)
   for (int v = 0; v < nv; ++v) kp[v] = c.normal_curvature(v, field[v]);
-  diffuse(current, topo.ring, h, kp);
+  diffuse(current, h, kp);
   return kp;
 }
 
@@ -468,7 +463,7 @@ std::vector<double> step_one_move(const Surface& surface, const EnhanceResult& o
   const std::vector<Vec3>& input = surface.mesh().vertices;
   std::vector<double> move(input.size());
   for (size_t v = 0; v < input.size(); ++v) move[v] = out.field.base.normal[v].dot(out.bilateral[v] - input[v]);
-  diffuse(surface.mesh(), surface.topology().ring, out.spatial_scale, move);
+  diffuse(surface, out.spatial_scale, move);
   return move;
 }
 
@@ -518,8 +513,6 @@ FlowMoves move_vertices(const std::vector<double>& kp, double kappa_ref, double 
 void inverse_curvature_flow(const Surface& surface, const EnhanceParams& p, EnhanceResult& out) {
   const ProminentFieldResult& f = out.field;
   FlowState s = flow_start(surface, out);
-  TriMesh current;
-  current.faces = surface.mesh().faces;
   const int max_it = p.flow_iterations >= 0 ? p.flow_iterations : EnhanceParams::kMaxFlowIterations;
   const double max_move = p.flow_step * f.scale.edge;
   double kappa_ref = 0, first_total = 0;
@@ -527,9 +520,9 @@ void inverse_curvature_flow(const Surface& surface, const EnhanceParams& p, Enha
   out.converged = p.flow_iterations < 0;
   for (int it = 0; it < max_it; ++it) {
     if (p.progress) p.progress(30 + 70 * it / std::max(1, max_it), "Inverse-curvature flow");
-    current.vertices = flow_positions(out, s.u);
+    const Surface current = surface.with_positions(flow_positions(out, s.u));
     Curvature c;
-    const std::vector<double> kp = flow_curvature(current, surface.topology(), f.field, f.scale.edge, c);
+    const std::vector<double> kp = flow_curvature(current, f.field, f.scale.edge, c);
     if (it == 0) {
       std::vector<double> a;
       for (size_t v = 0; v < kp.size(); ++v)

@@ -187,11 +187,11 @@ std::vector<Vec2> edge_model(const ReliefEdgeParams& p, const ReliefEdgeGuidance
 
 // Step 5, edge smoothing (eq. 4.18): smooth G, then recover directions giving the smoothed value,
 // nearest to the current ones; where none exists, the nearest value.
-void smooth_edges(const TriMesh& mesh, const ReliefEdgeGuidance& guide, std::vector<Vec2>& g2, ReliefEdgeFields& r) {
+void smooth_edges(const Surface& surface, const ReliefEdgeGuidance& guide, std::vector<Vec2>& g2, ReliefEdgeFields& r) {
   const Curvature& c = r.curvature;
   const int nv = static_cast<int>(c.k1.size());
   std::vector<double> Gs = r.G;
-  diffuse(mesh, r.topology->ring, r.edge_smoothing, Gs);
+  diffuse(surface, r.edge_smoothing, Gs);
 #pragma omp parallel for schedule(static)
   for (int v = 0; v < nv; ++v) {
     const double k1 = c.k1[v], k2 = c.k2[v];
@@ -336,7 +336,7 @@ ReliefEdgeFields compute_relief_edge_fields(const Surface& surface, const Relief
   std::vector<Vec2> g2 = edge_model(p, guide, frames, r);
   if (r.edge_smoothing > 0) {
     if (p.progress) p.progress(88, "Edge smoothing");
-    smooth_edges(mesh, guide, g2, r);
+    smooth_edges(surface, guide, g2, r);
   }
   sized(r.direction, c.k1.size(), Vec3(Vec3::Zero()));
 #pragma omp parallel for schedule(static)

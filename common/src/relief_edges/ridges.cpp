@@ -6,19 +6,28 @@
 
 namespace reliefkit {
 
-Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength,
-                      std::vector<double>* all_strengths) {
+namespace {
+
+// What a ridge (k1 along t1) or valley (k2 along t2) line is a zero crossing of, and its strength.
+struct RidgeField {
+  std::vector<double> value, strength;
+  DirectionalFieldView view;
+  ZeroCrossingOptions options;
+};
+
+// `field` is filled in place: its view points into its own arrays (it must not be copied).
+void make_ridge_field(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength, RidgeField& field) {
   if (c.dcurv.size() != c.k1.size()) throw InputError("ridges and valleys need the curvature derivative tensor");
   const int nv = mesh.n_vertices();
-  std::vector<double> value(nv), strength(nv);
+  field.value.resize(size_t(nv)), field.strength.resize(size_t(nv));
   for (int v = 0; v < nv; ++v) {
-    value[v] = valleys ? c.dcurv[v].d : c.dcurv[v].a;  // derivative of k2 along t2 / of k1 along t1
-    strength[v] = valleys ? -c.k2[v] : c.k1[v];
+    field.value[v] = valleys ? c.dcurv[v].d : c.dcurv[v].a;  // derivative of k2 along t2 / of k1 along t1
+    field.strength[v] = valleys ? -c.k2[v] : c.k1[v];
   }
-  DirectionalFieldView f;
+  DirectionalFieldView& f = field.view;
   f.direction = valleys ? c.dir2.data() : c.dir1.data();
-  f.value = value.data();
-  f.strength = strength.data();
+  f.value = field.value.data();
+  f.strength = field.strength.data();
   f.size = size_t(nv);
   f.axial = true;
   f.value_along = [&c](int v, const Vec3& t) { return c.derivative_along(v, t); };
@@ -26,37 +35,48 @@ Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, dou
     double k = c.normal_curvature(v, t);
     return valleys ? -k : k;
   };
-  ZeroCrossingOptions o;
-  o.min_strength = min_strength;
-  o.all_strengths = all_strengths;
+  field.options.min_strength = min_strength;
   // Keep maxima of k1 (the derivative decreases along t1) for ridges, minima of k2 for valleys:
   // the gradient of the linearly interpolated derivative across the face, against the face's
   // mean direction.
-  o.accept_face = [&mesh, valleys](int face, const double val[3], const Vec3 dir[3]) {
+  field.options.accept_face = [&mesh, valleys](int face, const double val[3], const Vec3 dir[3]) {
     const double along = face_gradient(mesh, face, val).dot(dir[0] + dir[1] + dir[2]);
     return valleys ? along > 0 : along < 0;
   };
-  return extract_zero_crossings(mesh, c.normal, f, o);
+}
+
+}  // namespace
+
+Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength) {
+  RidgeField field;
+  make_ridge_field(mesh, c, valleys, min_strength, field);
+  return extract_zero_crossings(mesh, c.normal, field.view, field.options);
+}
+
+CandidateCrossings ridge_candidates(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength) {
+  RidgeField field;
+  make_ridge_field(mesh, c, valleys, min_strength, field);
+  return extract_candidate_crossings(mesh, c.normal, field.view, field.options);
 }
 
 void RidgeValleyParams::validate() const {
   presmoothing.check("Pre-smoothing", 0, 100);
   require_range(relative_threshold, "Strength threshold", 0, 1000);
   require_range(min_length_edges, "Minimum curve length (edge lengths)", 0, 1e6);
-  require_range(weak_ratio, "Weak line ratio", 0, 1);
-  require_range(link_gap_edges, "Bridge gaps up to", 0, 20);
+  require_range(linking.weak_ratio, "Weak line ratio", 0, 1);
+  require_range(linking.gap_edges, "Bridge gaps up to", 0, 20);
 }
 
-Polylines select_ridge_lines(const Polylines& all, double threshold, const RidgeValleyParams& p, double edge,
+Polylines select_ridge_lines(const Polylines& all, double threshold, const LineLinking& linking, double edge,
                              double min_length) {
   std::vector<char> strong(all.segments.size()), weak(all.segments.size());
   for (size_t k = 0; k < all.segments.size(); ++k) {
     const double s = 0.5 * (all.strength[all.segments[k][0]] + all.strength[all.segments[k][1]]);
     strong[k] = s >= threshold;
-    weak[k] = s >= p.weak_ratio * threshold;
+    weak[k] = s >= linking.weak_ratio * threshold;
   }
-  Polylines kept = p.weak_ratio < 1 ? hysteresis(all, strong, weak) : select_segments(all, strong);
-  if (p.link_gap_edges > 0) link_gaps(kept, p.link_gap_edges * edge, kLinkTurn);
+  Polylines kept = linking.weak_ratio < 1 ? hysteresis(all, strong, weak) : select_segments(all, strong);
+  if (linking.gap_edges > 0) link_gaps(kept, linking.gap_edges * edge, kLinkTurn);
   return drop_short_chains(kept, min_length);
 }
 
@@ -70,7 +90,7 @@ double quiet_threshold(const Polylines& lines, const RidgeValleyParams& p, doubl
   const double min_length = p.min_length_edges * edge;
   for (int it = 0; it < 30 && hi > 0; ++it) {
     const double mid = 0.5 * (lo + hi);
-    (select_ridge_lines(lines, mid, p, edge, min_length).segments.empty() ? hi : lo) = mid;
+    (select_ridge_lines(lines, mid, p.linking, edge, min_length).segments.empty() ? hi : lo) = mid;
   }
   return hi;
 }
@@ -87,8 +107,7 @@ RidgeStrengths noise_ridge_strengths(const NoisePatch& noise_patch, double presm
   co.estimator = p.estimator;
   co.smoothing_scale = presmoothing_edges * edge;
   co.derivatives = true;
-  co.topology = &patch.topology();
-  const Curvature c = compute_curvature(patch.mesh(), co);
+  const Curvature c = compute_curvature(patch, co);
   const int margin = noise_patch_margin(presmoothing_edges);
   auto floor = [&](bool valleys) {
     const Polylines all = ridge_lines(patch.mesh(), c, valleys, 0.0);
@@ -137,18 +156,17 @@ RidgeValleyResult compute_ridges_valleys(const Surface& surface, const RidgeVall
     return std::max(med, 0.01 * *p99);
   };
   const double noise_r = noise_scale(kmax), noise_v = noise_scale(kmin);
-  std::vector<double> str_r, str_v;
-  const double floor = p.weak_ratio * p.relative_threshold * kNoiseFactor;
-  Polylines cand_r = ridge_lines(mesh, r.curvature, false, floor * noise_r, &str_r);
-  Polylines cand_v = ridge_lines(mesh, r.curvature, true, floor * noise_v, &str_v);
-  for (double x : str_r) r.strongest_ridge = std::max(r.strongest_ridge, x);
-  for (double x : str_v) r.strongest_valley = std::max(r.strongest_valley, x);
+  const double floor = p.linking.weak_ratio * p.relative_threshold * kNoiseFactor;
+  CandidateCrossings cand_r = ridge_candidates(mesh, r.curvature, false, floor * noise_r);
+  CandidateCrossings cand_v = ridge_candidates(mesh, r.curvature, true, floor * noise_v);
+  for (double x : cand_r.all_strengths) r.strongest_ridge = std::max(r.strongest_ridge, x);
+  for (double x : cand_v.all_strengths) r.strongest_valley = std::max(r.strongest_valley, x);
   // At least what noise alone draws after the same pre-smoothing (on the noise patch).
   const RidgeStrengths by_noise = scan_noise_ridge_strengths(r, mesh.n_faces(), p, noise_patch);
-  r.ridge_threshold = p.relative_threshold * std::max(automatic_curve_threshold(noise_r, std::move(str_r)), by_noise.ridges / r.scale.edge);
-  r.valley_threshold = p.relative_threshold * std::max(automatic_curve_threshold(noise_v, std::move(str_v)), by_noise.valleys / r.scale.edge);
-  r.ridges = select_ridge_lines(cand_r, r.ridge_threshold, p, r.scale.edge, r.min_length);
-  r.valleys = select_ridge_lines(cand_v, r.valley_threshold, p, r.scale.edge, r.min_length);
+  r.ridge_threshold = p.relative_threshold * std::max(automatic_curve_threshold(noise_r, std::move(cand_r.all_strengths)), by_noise.ridges / r.scale.edge);
+  r.valley_threshold = p.relative_threshold * std::max(automatic_curve_threshold(noise_v, std::move(cand_v.all_strengths)), by_noise.valleys / r.scale.edge);
+  r.ridges = select_ridge_lines(cand_r.lines, r.ridge_threshold, p.linking, r.scale.edge, r.min_length);
+  r.valleys = select_ridge_lines(cand_v.lines, r.valley_threshold, p.linking, r.scale.edge, r.min_length);
   return r;
 }
 

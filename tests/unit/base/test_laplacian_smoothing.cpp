@@ -67,14 +67,13 @@ TEST(Laplacian, SphereMeanCurvatureNormal) {
 TEST(Smoothing, DiffusionSpreadsLikeAGaussianOfTheGivenScale) {
   const int n = 120;
   TriMesh m = rktest::height_field([](double, double) { return 0.0; }, 1.0, n);
-  VertexFaces vf = vertex_faces(m);
-  VertexRing ring = vertex_rings(m, vf);
+  const Surface surface = Surface::borrow(m);
   std::vector<double> f(m.n_vertices(), 0.0);
   int center = (n / 2) * (n + 1) + n / 2;
   ASSERT_NEAR(m.vertices[center].norm(), 0, 1e-12);
   f[center] = 1.0;
   const double sigma = 0.08;  // ~5 grid cells
-  diffuse(m, ring, sigma, f);
+  diffuse(surface, sigma, f);
   double mass = 0, vx = 0, vy = 0;
   for (int i = 0; i < m.n_vertices(); ++i) {
     mass += f[i];
@@ -86,8 +85,8 @@ TEST(Smoothing, DiffusionSpreadsLikeAGaussianOfTheGivenScale) {
   std::printf("diffusion of scale %.4f: measured spread %.4f (%.2f %% off)\n", sigma, spread,
               100 * std::abs(spread / sigma - 1));
   EXPECT_NEAR(spread, sigma, 0.03 * sigma);  // measured 0.7 %
-  EXPECT_EQ(diffusion_steps(m, 0), 0);
+  EXPECT_EQ(diffusion_steps(surface.scale(), 0), 0);
   std::vector<double> constant(m.n_vertices(), 2.5);
-  diffuse(m, ring, sigma, constant);
+  diffuse(surface, sigma, constant);
   for (double c : constant) ASSERT_NEAR(c, 2.5, 1e-12);
 }

@@ -368,14 +368,14 @@ TEST(RidgesValleys, WeakStretchesAndSmallGapsJoinTheLines) {
   };
   line(0, 20, {9, 10, 11});
   line(23, 10, {});
-  RidgeValleyParams thresholds_only;  // weak_ratio 1, no gap bridging: the line breaks at 8 and 8
+  const LineLinking thresholds_only;  // weak_ratio 1, no gap bridging: the line breaks at 8 and 8
   EXPECT_NEAR(select_ridge_lines(all, 1.0, thresholds_only, 1.0, 9.0).total_length(), 10.0, 1e-9);
-  RidgeValleyParams connecting;
+  LineLinking connecting;
   connecting.weak_ratio = 0.5;
   const Polylines joined = select_ridge_lines(all, 1.0, connecting, 1.0, 9.0);
   EXPECT_NEAR(joined.total_length(), 30.0, 1e-9);
   EXPECT_EQ(joined.chains().size(), 2u);
-  connecting.link_gap_edges = 4;
+  connecting.gap_edges = 4;
   const Polylines bridged = select_ridge_lines(all, 1.0, connecting, 1.0, 9.0);
   EXPECT_NEAR(bridged.total_length(), 33.0, 1e-9);
   EXPECT_EQ(bridged.chains().size(), 1u);

@@ -56,8 +56,6 @@ struct CurvatureOptions {
   /// Also estimate the derivative tensor (the second pass roughly doubles the time).
   bool derivatives = true;
   Progress progress = nullptr;
-  /// The mesh's connectivity, when the caller has it (else built here).
-  const MeshTopology* topology = nullptr;
 };
 
 struct Curvature {
@@ -79,7 +77,11 @@ struct Curvature {
 
 /// Computes normals, point areas, principal curvatures/directions and (optionally) the
 /// derivative tensor at every vertex. Throws InputError for meshes require_triangles rejects.
-/// Runs in parallel (OpenMP) over faces and vertices; no result is NaN.
+/// Runs in parallel (OpenMP) over faces and vertices; no result is NaN. The surface's run gives
+/// the connectivity and the pre-smoothing's number of steps; the smoothed copy is
+/// surface.with_positions(...) (smoothed_surface).
+Curvature compute_curvature(const Surface& surface, const CurvatureOptions& options = {});
+/// The same on a mesh with no run yet (its connectivity and scale are computed here).
 Curvature compute_curvature(const TriMesh& mesh, const CurvatureOptions& options = {});
 
 /// The first stage of every curve filter: the scan's scale and noise level, the pre-smoothing

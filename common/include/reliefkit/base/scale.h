@@ -23,6 +23,10 @@ struct MeshScale {
   double edge = 0;         // median edge length of the largest part (mesh units); the unit of length parameters
   double mean_edge = 0;    // mean edge length of the largest part
   double object_size = 0;  // bounding-box diagonal of the largest part
+  /// What one explicit diffusion step spreads by (smoothing.h): a quarter of the mean squared edge
+  /// length of the largest part over its edges at most 4 x `edge` long (so a coarse plate or debris
+  /// does not cut the number of steps). Mesh units squared, per tangent direction.
+  double step_variance = 0;
   int parts = 0;           // connected parts with at least one face
   long long main_faces = 0;  // faces of the largest part
   /// Per vertex: 1 if it belongs to a part that counts for statistics (thresholds, noise): the

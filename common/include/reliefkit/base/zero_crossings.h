@@ -54,10 +54,6 @@ struct ZeroCrossingOptions {
   /// Optional extra test of a crossed face: face id, the three vertex values and directions
   /// used (after the consistency rule). Ridges use it to keep maxima and drop minima.
   std::function<bool(int face, const double value[3], const Vec3 direction[3])> accept_face;
-  /// When set, receives the strength of every crossed face's segment, also of those below
-  /// `min_strength`: the distribution an automatic threshold needs, without building (and
-  /// merging) the weak segments.
-  std::vector<double>* all_strengths = nullptr;
 };
 
 struct Polylines {
@@ -85,6 +81,16 @@ Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& n
                                  const DirectionalFieldView& field, const ZeroCrossingOptions& options = {});
 Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& normals,
                                  const DirectionalField& field, const ZeroCrossingOptions& options = {});
+
+/// The crossings at `min_strength` and above, and the strength of every crossed face's segment,
+/// also of those below it: the distribution an automatic threshold needs, without building (and
+/// merging) the weak segments.
+struct CandidateCrossings {
+  Polylines lines;
+  std::vector<double> all_strengths;  // one per crossed face that passed the direction and accept tests
+};
+CandidateCrossings extract_candidate_crossings(const TriMesh& mesh, const std::vector<Vec3>& normals,
+                                               const DirectionalFieldView& field, const ZeroCrossingOptions& options);
 
 /// The gradient over a face of the linear interpolation of three values at its corners (zero on
 /// a degenerate face): accept_face tests use it to tell maxima from minima.

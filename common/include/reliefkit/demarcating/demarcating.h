@@ -46,13 +46,16 @@ struct DemarcatingOptions {
   double min_strength = 0;              // absolute strength threshold (1/length^2)
   double max_angle = 0.78539816339744831;  // direction-consistency angle (pi/4, thesis 3.3.2)
   double min_length = 0;                // drop curves shorter than this (mesh units)
-  std::vector<double>* all_strengths = nullptr;  // see ZeroCrossingOptions::all_strengths
 };
 
 /// The demarcating curves: zero crossings of k(g_p) along g_p (shared extraction, with the
 /// direction-consistency rule and sub-edge interpolation), point strength C(g_p, g_p, g_p).
 Polylines demarcating_curves(const TriMesh& mesh, const Curvature& curvature, const CurvatureGradient& gradient,
                              const DemarcatingOptions& options);
+/// The crossings at options.min_strength and above (min_length not applied) with the strengths of
+/// all crossing segments, for the automatic threshold (CandidateCrossings).
+CandidateCrossings demarcating_candidates(const TriMesh& mesh, const Curvature& curvature,
+                                          const CurvatureGradient& gradient, const DemarcatingOptions& options);
 
 /// The whole method with the defaults users get from the filter. Lengths are multiples of the
 /// scan's typical edge length (MeshScale::edge), so the same parameters suit any unit.

@@ -82,8 +82,7 @@ void add_finest_scale_lines(const Surface& surface, RidgeValleyParams params, co
 /// threshold joined to stronger ones are kept, gaps up to this many edge lengths bridged, and the
 /// filter's default minimum length is kMultiscaleMinLengthEdges (the thresholds alone left 19-63 %
 /// of the length in pieces under 10 edge lengths on the shared scans and decimated copies).
-constexpr double kConnectingWeakRatio = 0.5;
-constexpr double kConnectingGapEdges = 6.0;
+constexpr LineLinking kConnectingLines{0.5, 6.0};
 constexpr double kMultiscaleMinLengthEdges = 8.0;
 
 /// `scale.curve` is set to the detector's strength; `params.presmoothing` is ignored (the optimal

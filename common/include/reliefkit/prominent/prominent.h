@@ -145,10 +145,10 @@ struct EnhanceResult {
 EnhanceResult enhance_relief(const Surface& surface, const EnhanceParams& params = {});
 EnhanceResult enhance_relief(const TriMesh& mesh, const EnhanceParams& params = {});
 
-/// One bilateral pass (eqs. 6.7-6.8) of `positions` over `mesh`'s connectivity: neighbours within
-/// 2 sigma_c along the surface; `field` null: the filter of Fleishman et al. 2003.
-std::vector<Vec3> bilateral_pass(const TriMesh& mesh, const MeshTopology& topology, const std::vector<Vec3>& positions,
-                                 double sigma_c, const std::vector<Vec3>* field);
+/// One bilateral pass (eqs. 6.7-6.8) of the positions of `at` (the run's surface, or a smoothed
+/// copy of it by with_positions): neighbours within 2 sigma_c along the surface; the new positions.
+/// `field` null: the filter of Fleishman et al. 2003.
+std::vector<Vec3> bilateral_pass(const Surface& at, double sigma_c, const std::vector<Vec3>* field);
 
 // ---- Coloring (thesis 6.5) ----
 

@@ -15,17 +15,21 @@
 
 namespace reliefkit {
 
+/// How lines are connected after the threshold: segments at least weak_ratio x the threshold are
+/// kept where they join one above it (hysteresis), and chain ends facing each other across up to
+/// gap_edges edge lengths are joined. The default keeps what the threshold cuts.
+struct LineLinking {
+  double weak_ratio = 1.0;
+  double gap_edges = 0;
+};
+
 struct RidgeValleyParams {
   static constexpr double kDefaultMinLengthEdges = 4.0;
   CurvatureEstimator estimator = CurvatureEstimator::Jet;
   Length presmoothing = Length::automatic();  // automatic: from the noise level
   double relative_threshold = 1.0;   // x automatic threshold (automatic_curve_threshold)
   double min_length_edges = kDefaultMinLengthEdges;
-  /// Connecting the lines (the multi-scale filter's choice; 1 and 0 keep what the threshold cuts):
-  /// segments at least weak_ratio x the threshold are kept where they join one above it, and chain
-  /// ends facing each other across up to link_gap_edges edge lengths are joined.
-  double weak_ratio = 1.0;
-  double link_gap_edges = 0;
+  LineLinking linking;  // the single-scale filter keeps what the threshold cuts; the multi-scale one connects
   Progress progress = nullptr;
   /// Throws InputError naming the first parameter out of its range.
   void validate() const;
@@ -39,16 +43,15 @@ struct RidgeValleyResult : ScaledCurvature {  // scale, noise, pre-smoothing use
 };
 
 /// Ridges or valleys from an existing curvature (with derivatives); threshold absolute.
-/// `all_strengths` (optional) receives the strengths of all crossing segments (see
-/// ZeroCrossingOptions::all_strengths).
-Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength,
-                      std::vector<double>* all_strengths = nullptr);
+Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength);
+/// The same, with the strengths of all crossing segments (CandidateCrossings).
+CandidateCrossings ridge_candidates(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength);
 
 /// The lines kept of all candidate crossings (strengths per point): those above `threshold`, and
-/// with params.weak_ratio < 1 the weaker ones down to weak_ratio x it joined to them (hysteresis);
-/// gaps bridged (params.link_gap_edges); chains shorter than `min_length` (mesh units) dropped.
-Polylines select_ridge_lines(const Polylines& candidates, double threshold, const RidgeValleyParams& params,
-                             double edge, double min_length);
+/// with linking.weak_ratio < 1 the weaker ones down to weak_ratio x it joined to them (hysteresis);
+/// gaps bridged (linking.gap_edges); chains shorter than `min_length` (mesh units) dropped.
+Polylines select_ridge_lines(const Polylines& candidates, double threshold, const LineLinking& linking, double edge,
+                             double min_length);
 
 /// What noise alone draws: the least thresholds (ridges, valleys) at which the lines of a noise
 /// patch (noise_patch(.., n), carrying the scan's noise), after the same pre-smoothing and the
