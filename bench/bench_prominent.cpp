@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
         Vec3 across;
         const Vec3& p = r.mesh.vertices[v];
         if (std::abs(p.z()) > 0.9 || rim_distance(p, &across) > band) continue;
-        const Vec3& n = f.curvature.normal[v];
+        const Vec3& n = f.curvature->normal[v];
         err.push_back(line_angle_deg(f.field[v], across - n * n.dot(across)));
       }
       std::printf("| %s | prominent field: whole filter | %.2f s | %.2f s | %.0f MiB | median angle %.2f deg |\n",
@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
       for (const auto& [what, t] : rkbench::g_stages.time) std::printf(" %s %.2f s;", what.c_str(), t);
       std::printf("\n");
       const double t1 = rkbench::now();
-      const ColoringResult col = curvature_coloring(f.curvature, &f.field, f.scale.counts, ColoringCurvature::Prominent, 1);
+      const ColoringResult col = curvature_coloring(*f.curvature, &f.field, f.scale.counts, ColoringCurvature::Prominent, 1);
       std::printf("| %s | prominent coloring after the field | %.3f s | | | lambda %.4g |\n", thousands(nf).c_str(),
                   rkbench::now() - t1, col.lambda);
     }

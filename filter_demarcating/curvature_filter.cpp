@@ -68,7 +68,7 @@ void apply(FilterCall& call) {
   auto t1 = std::chrono::steady_clock::now();
   ScaledCurvature sc = curvature_at_scale(surface, presmoothing, opt.estimator, call.progress);
   opt.smoothing_scale = sc.presmoothing;
-  const Curvature& c = sc.curvature;
+  const Curvature& c = *sc.curvature;
   auto t2 = std::chrono::steady_clock::now();
 
   CMeshO& cm = call.mesh().cm;

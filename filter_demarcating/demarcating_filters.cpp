@@ -109,7 +109,7 @@ void apply_demarcating(FilterCall& call) {
   DemarcatingResult r = compute_demarcating(surface, p);
 
   const QString label = derived_label(call.mesh(), "demarcating curves");
-  add_curve_layer(call.doc, label, r.curves, vcg::Color4b(0, 0, 0, 255), &r.curvature.normal, lift * r.scale.edge);
+  add_curve_layer(call.doc, label, r.curves, vcg::Color4b(0, 0, 0, 255), &r.curvature->normal, lift * r.scale.edge);
   if (per_vertex) {
     write_vertex_attribute(call.mesh().cm, view, "demarcating_kappa", r.gradient.kappa);
     write_vertex_attribute(call.mesh().cm, view, "demarcating_strength", r.gradient.strength);
@@ -148,13 +148,13 @@ void apply_shading(FilterCall& call) {
   long long segments = 0;
   if (darken) {
     DemarcatingResult r = compute_demarcating(surface, p);
-    grey = mean_curvature_shading(r.curvature, contrast);
+    grey = mean_curvature_shading(*r.curvature, contrast);
     darken_along_curves(view.mesh, r.curves, darkness, grey);
     segments = static_cast<long long>(r.curves.segments.size());
     call.log(scale_summary(r.scale, r.noise, r.presmoothing, p.presmoothing));
   } else {
     ScaledCurvature sc = curvature_at_scale(surface, p.presmoothing, p.estimator, p.progress);
-    grey = mean_curvature_shading(sc.curvature, contrast);
+    grey = mean_curvature_shading(*sc.curvature, contrast);
     call.log(scale_summary(sc.scale, sc.noise, sc.presmoothing, p.presmoothing));
   }
   write_grey(call.mesh(), view, grey, grey);

@@ -133,7 +133,7 @@ void apply_field(FilterCall& call) {
   const bool curvature_dir = read_bool(call, "curvature_dir", "Show in Show Curvature");
   View view = view_of(call.mesh(), call.log);
   const ProminentFieldResult f = compute_prominent_field(surface_of(view), p);
-  const Curvature& c = f.curvature;
+  const Curvature& c = *f.curvature;
   const int nv = view.mesh.n_vertices();
   std::vector<double> kp(nv), kq(nv);
   std::vector<Vec3> across(nv);
@@ -254,11 +254,11 @@ void apply_coloring(FilterCall& call) {
   ColoringResult col;
   if (which == ColoringCurvature::Prominent) {
     const ProminentFieldResult f = compute_prominent_field(surface, p);
-    col = curvature_coloring(f.curvature, &f.field, f.scale.counts, which, contrast);
+    col = curvature_coloring(*f.curvature, &f.field, f.scale.counts, which, contrast);
     log_field(call, f, p);
   } else {
     const ScaledCurvature sc = begin_curve_filter(surface, p);
-    col = curvature_coloring(sc.curvature, nullptr, sc.scale.counts, which, contrast);
+    col = curvature_coloring(*sc.curvature, nullptr, sc.scale.counts, which, contrast);
     call.log(scale_summary(sc.scale, sc.noise, sc.presmoothing, p.presmoothing));
   }
   write_grey(call.mesh(), view, col.grey, col.curvature);

@@ -141,7 +141,7 @@ void apply_relief(FilterCall& call) {
   Polylines edges = r.edges;
   for (auto& s : edges.strength) s /= kDeg;  // layer quality in degrees
   const QString label = derived_label(call.mesh(), "relief edges");
-  add_curve_layer(call.doc, label, edges, vcg::Color4b(0, 0, 0, 255), &r.curvature.normal, lift * r.scale.edge);
+  add_curve_layer(call.doc, label, edges, vcg::Color4b(0, 0, 0, 255), &r.curvature->normal, lift * r.scale.edge);
   if (per_vertex) {
     write_vertex_attribute(call.mesh().cm, view, "relief_G", r.G);
     write_vertex_vectors(call.mesh().cm, view, "relief_direction", r.direction);
@@ -221,8 +221,8 @@ void apply_ridges(FilterCall& call) {
   View view = view_of(call.mesh(), call.log);
   RidgeValleyResult r = compute_ridges_valleys(surface_of(view), p);
   const QString lr = derived_label(call.mesh(), "ridges"), lv = derived_label(call.mesh(), "valleys");
-  add_curve_layer(call.doc, lr, r.ridges, vcg::Color4b(200, 30, 30, 255), &r.curvature.normal, lift * r.scale.edge);
-  add_curve_layer(call.doc, lv, r.valleys, vcg::Color4b(30, 30, 200, 255), &r.curvature.normal, lift * r.scale.edge);
+  add_curve_layer(call.doc, lr, r.ridges, vcg::Color4b(200, 30, 30, 255), &r.curvature->normal, lift * r.scale.edge);
+  add_curve_layer(call.doc, lv, r.valleys, vcg::Color4b(30, 30, 200, 255), &r.curvature->normal, lift * r.scale.edge);
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   call.log(QString("Ridges: %1 segments (threshold %2); valleys: %3 segments (threshold %4); layers \"%5\", \"%6\"; "
                    "%7 s.")

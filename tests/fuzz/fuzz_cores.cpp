@@ -115,14 +115,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
           const EnhanceResult e = enhance_relief(m, p);
           for (size_t v = 0; v < e.positions.size(); ++v)
             if (!e.positions[v].allFinite() || !e.field.field[v].allFinite()) std::abort();
-          const ColoringResult c = curvature_coloring(e.field.curvature, &e.field.field, {}, ColoringCurvature::Prominent, 1);
+          const ColoringResult c = curvature_coloring(*e.field.curvature, &e.field.field, {}, ColoringCurvature::Prominent, 1);
           for (double g : c.grey)
             if (!(g >= 0 && g <= 1)) std::abort();
           break;
         }
         ScaledCurvature c = curvature_at_scale(m, smooth, CurvatureEstimator::Jet, nullptr);
-        for (size_t v = 0; v < c.curvature.k1.size(); ++v)
-          if (!std::isfinite(c.curvature.k1[v]) || !std::isfinite(c.curvature.k2[v])) std::abort();
+        for (size_t v = 0; v < c.curvature->k1.size(); ++v)
+          if (!std::isfinite(c.curvature->k1[v]) || !std::isfinite(c.curvature->k2[v])) std::abort();
       }
     }
   } catch (const InputError&) {

@@ -6,6 +6,7 @@
 
 #include "reliefkit/base/memory.h"
 #include "reliefkit/base/smoothing.h"
+#include "reliefkit/base/work_counts.h"
 
 namespace reliefkit {
 namespace {
@@ -439,12 +440,9 @@ ScaledCurvature curvature_at_scale(const Surface& surface, const Length& presmoo
   out.noise = surface.noise();  // refuses a mesh without usable edge length
   presmoothing.check("Pre-smoothing", 0, 100, out.scale.edge);
   out.presmoothing = presmoothing.resolve(out.scale.edge, automatic_presmoothing(out.noise, out.scale));
-  CurvatureOptions co;
-  co.estimator = estimator;
-  co.smoothing_scale = out.presmoothing;
-  co.derivatives = true;
-  co.progress = progress;
-  out.curvature = compute_checked_curvature(surface, co);  // the mesh is checked above
+  if (out.presmoothing > 0) report(progress, 5, "Pre-smoothing");
+  const Surface at = smoothed_surface(surface, out.presmoothing);
+  out.curvature = at.curvature(estimator, true, progress);
   return out;
 }
 
@@ -464,6 +462,7 @@ Curvature compute_curvature(const TriMesh& input, const CurvatureOptions& opt) {
 }
 
 static Curvature compute_checked_curvature(const Surface& input, const CurvatureOptions& opt) {
+  count_work(Work::Curvature);
   report(opt.progress, 0, "Vertex adjacency");
   const VertexFaces& vf = input.topology().faces;
   // Pre-smoothing: the curvature of a diffused copy of the surface is reported at the

@@ -21,6 +21,9 @@ struct Surface::Positions {
   std::vector<Vec3> normals;
   std::mutex laplacian_mutex;
   std::map<bool, std::unique_ptr<LaplacianResult>> laplacian;  // by LaplacianOptions::clamp_negative
+  std::mutex curvature_mutex;
+  // By estimator, then with derivatives (true) or without.
+  std::map<std::pair<CurvatureEstimator, bool>, std::shared_ptr<const Curvature>> curvature;
 };
 
 Surface::Surface(TriMesh mesh, VertexFaces faces)
@@ -76,6 +79,21 @@ const LaplacianResult& Surface::laplacian(const LaplacianOptions& options) const
   auto& slot = at_->laplacian[options.clamp_negative];
   if (!slot) slot = std::make_unique<LaplacianResult>(cotangent_laplacian(*mesh_, topology(), options));
   return *slot;
+}
+
+std::shared_ptr<const Curvature> Surface::curvature(CurvatureEstimator estimator, bool derivatives,
+                                                    Progress progress) const {
+  std::lock_guard<std::mutex> lock(at_->curvature_mutex);
+  if (auto full = at_->curvature.find({estimator, true}); full != at_->curvature.end()) return full->second;
+  auto& slot = at_->curvature[{estimator, derivatives}];
+  if (!slot) {
+    CurvatureOptions options;
+    options.estimator = estimator;
+    options.derivatives = derivatives;
+    options.progress = progress;
+    slot = std::make_shared<const Curvature>(compute_curvature(*this, options));
+  }
+  return slot;
 }
 
 Surface Surface::with_positions(std::vector<Vec3> positions) const {

@@ -20,7 +20,7 @@ void reset_work_counts() {
 }
 
 std::string WorkCounts::summary() const {
-  static const char* const names[] = {"adjacency", "scale", "noise", "Laplacian", "noise floor", "repair"};
+  static const char* const names[] = {"adjacency", "scale", "noise", "Laplacian", "noise floor", "repair", "curvature"};
   std::string s;
   for (int i = 0; i < static_cast<int>(Work::Count_); ++i)
     s += (i ? ", " : "") + std::string(names[i]) + " " + std::to_string(n[i]);

@@ -116,9 +116,9 @@ double noise_curve_strength(const NoiseEstimate& noise, double presmoothing_edge
     return 0;
   const NoisePatch patch = make_noise_patch(noise.relative, n);
   ScaledCurvature sc = curvature_at_scale(*patch.surface, Length::in_edges(presmoothing_edges), estimator, nullptr);
-  const CurvatureGradient g = curvature_gradient(sc.curvature);
+  const CurvatureGradient g = curvature_gradient(*sc.curvature);
   DemarcatingOptions o;
-  const Polylines all = demarcating_curves(patch.surface->mesh(), sc.curvature, g, o);
+  const Polylines all = demarcating_curves(patch.surface->mesh(), *sc.curvature, g, o);
   const int margin = noise_patch_margin(presmoothing_edges);
   const double unit = sc.scale.edge;  // patch edge -> strengths per edge length squared
   return kNoiseCurveFactor * percentile(interior_segment_strengths(all, n, margin), kNoiseCurvePercentile) * unit * unit;
@@ -141,7 +141,7 @@ DemarcatingResult compute_demarcating(const Surface& surface, const DemarcatingP
   static_cast<ScaledCurvature&>(r) = begin_curve_filter(surface, p);
   r.min_length = p.min_length_edges * r.scale.edge;
   if (p.progress) p.progress(85, "Curvature gradient");
-  r.gradient = curvature_gradient(r.curvature);
+  r.gradient = curvature_gradient(*r.curvature);
   r.median_strength = median_positive(counted_values(r.gradient.strength, r.scale.counts));
   if (p.progress) p.progress(92, "Demarcating curves");
   // The threshold is at least relative x the noise term, so weaker segments need not be built:
@@ -149,7 +149,7 @@ DemarcatingResult compute_demarcating(const Surface& surface, const DemarcatingP
   DemarcatingOptions o;
   o.min_strength = p.relative_threshold * kNoiseFactor * r.median_strength;
   o.max_angle = p.max_angle;
-  CandidateCrossings candidates = demarcating_candidates(mesh, r.curvature, r.gradient, o);
+  CandidateCrossings candidates = demarcating_candidates(mesh, *r.curvature, r.gradient, o);
   for (double x : candidates.all_strengths) r.strongest_crossing = std::max(r.strongest_crossing, x);
   r.automatic_threshold = automatic_curve_threshold(r.median_strength, std::move(candidates.all_strengths));
   r.noise_threshold = noise_curve_strength(r.noise, r.presmoothing / r.scale.edge, p.estimator,

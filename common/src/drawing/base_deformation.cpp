@@ -386,15 +386,18 @@ void check_deform_input(const Surface& model, const std::vector<ViewOutline>& vi
     if (v.outline.size() < 3) throw InputError(std::string("The ") + view_name(v.kind) + " view has no outline.");
 }
 
-void set_positions(TriMesh& mesh, const Eigen::MatrixXd& X) {
-  for (int i = 0; i < mesh.n_vertices(); ++i) mesh.vertices[size_t(i)] = X.row(i).transpose();
+std::vector<Vec3> positions_of(const Eigen::MatrixXd& X) {
+  std::vector<Vec3> out(size_t(X.rows()));
+  for (long i = 0; i < X.rows(); ++i) out[size_t(i)] = X.row(i).transpose();
+  return out;
 }
 
-// The model moved as its coarse copy was (X against the copy's rest positions V0).
-TriMesh moved_as_copy(const TriMesh& model, const CoarseCopy& copy, const Eigen::MatrixXd& X, const Eigen::MatrixXd& V0) {
+// The model's positions moved as its coarse copy was (X against the copy's rest positions V0).
+std::vector<Vec3> moved_as_copy(const TriMesh& model, const CoarseCopy& copy, const Eigen::MatrixXd& X,
+                                const Eigen::MatrixXd& V0) {
   const Eigen::MatrixXd shift = copy.P * (X - V0);
-  TriMesh out = model;
-  for (size_t i = 0; i < out.vertices.size(); ++i) out.vertices[i] += shift.row(long(i)).transpose();
+  std::vector<Vec3> out = model.vertices;
+  for (size_t i = 0; i < out.size(); ++i) out[i] += shift.row(long(i)).transpose();
   return out;
 }
 
@@ -436,12 +439,12 @@ TriMesh deform_in_passes(const Surface& model, const CoarseCopy* copy, const std
   // the silhouette, so each pass is ordered again: AMD, quick on a copy of <= 20 K faces.
   SpdFactorization factorization(params.passes == 1 || copy ? SpdFactorization::Ordering::Amd : SpdFactorization::Ordering::Best);
   Eigen::MatrixXd Ltdelta_ref = sys.L.transpose() * sys.delta, X = sys.V0;
-  TriMesh current = model.mesh();
+  Surface current = model;
   std::vector<double> history;  // silhouette error after each pass
   for (int pass = 0; pass < params.passes; ++pass) {
     const int p0 = 5 + 90 * pass / params.passes, p1 = 5 + 90 * (pass + 1) / params.passes;
     progress(p0, "Silhouette of the model");
-    const Targets targets = silhouette_targets(current, setting, views, params.resolution);
+    const Targets targets = silhouette_targets(current.mesh(), setting, views, params.resolution);
     rep.silhouette_vertices = targets.constrained;
     progress((p0 + p1) / 2, "Least-squares solve (Cholesky)");
     // The first pass is the thesis' solve; a further pass keeps the Laplacian coordinates of the
@@ -449,15 +452,14 @@ TriMesh deform_in_passes(const Surface& model, const CoarseCopy* copy, const std
     // goblet — is reached, not just begun).
     const PullTerm pull = copy ? pull_on_copy(targets, model.mesh(), *copy, sys.V0) : pull_on_model(targets);
     X = solve_pass(sys, pull, Ltdelta_ref, params.alpha, factorization, rep.solver);
-    if (copy) current = moved_as_copy(model.mesh(), *copy, X, sys.V0);
-    else set_positions(current, X);
+    current = model.with_positions(copy ? moved_as_copy(model.mesh(), *copy, X, sys.V0) : positions_of(X));
     rep.passes = pass + 1;
-    if (pass + 1 == params.passes || !still_improving(history, current, views)) break;
+    if (pass + 1 == params.passes || !still_improving(history, current.mesh(), views)) break;
     Ltdelta_ref = sys.L.transpose() * (sys.L * X);
   }
   rep.solver += "; " + std::to_string(factorization.factorizations()) + " factorization(s) in " + std::to_string(rep.passes) +
                 " pass(es)";
-  return current;
+  return current.mesh();
 }
 }  // namespace
 

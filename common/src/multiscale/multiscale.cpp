@@ -76,13 +76,13 @@ MultiscaleRidgeValleys multiscale_ridges_valleys(const Surface& surface, Optimal
   // coarse feature of the same depth compare equal; the automatic threshold then sits above
   // what noise alone reaches (OptimalScale::strength_floor).
   for (bool valleys : {false, true}) {
-    Polylines all = ridge_lines(smoothed, c.curvature, valleys, 0.0);
+    Polylines all = ridge_lines(smoothed, *c.curvature, valleys, 0.0);
     // The curvature across the line over the base's (on a curved object the base's own
     // curvature, times σ², would make every smooth area strong).
     std::vector<double> feature(static_cast<size_t>(smoothed.n_vertices()));
     for (int v = 0; v < smoothed.n_vertices(); ++v) {
-      const Vec3& d = valleys ? c.curvature.dir2[v] : c.curvature.dir1[v];
-      const double k = (valleys ? c.curvature.k2[v] : c.curvature.k1[v]) - d.dot(r.scale.base_shape[v] * d);
+      const Vec3& d = valleys ? c.curvature->dir2[v] : c.curvature->dir1[v];
+      const double k = (valleys ? c.curvature->k2[v] : c.curvature->k1[v]) - d.dot(r.scale.base_shape[v] * d);
       feature[v] = valleys ? -k : k;
     }
     for (size_t i = 0; i < all.points.size(); ++i) {

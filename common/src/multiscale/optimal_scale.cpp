@@ -140,12 +140,11 @@ BaseSurface base_surface(const Surface& surface, const Levels& levels, const Opt
     bo.substeps = 1;
     bo.method = SolverMethod::Direct;
   }
-  CurvatureOptions co;
-  co.derivatives = false;
   const int nv = surface.n_vertices();
   b.space = scale_space(surface, {factor * levels.sigma.back()}, bo, [&](int, const Surface& smoothed) {
     if (opt.progress) opt.progress(2, "Optimal scale: base surface");
-    const Curvature c = compute_curvature(smoothed, co);
+    const std::shared_ptr<const Curvature> curvature = smoothed.curvature(CurvatureEstimator::Jet, false);
+    const Curvature& c = *curvature;
     sized(b.shape, size_t(nv));
 #pragma omp parallel for schedule(static)
     for (int v = 0; v < nv; ++v) b.shape[v] = shape_tensor(c, v);
@@ -172,11 +171,10 @@ LevelStrengths level_strengths(const Surface& surface, const Levels& levels, con
   LevelStrengths ls;
   sized(ls.s, size_t(nv) * size_t(nl));
   if (opt.smoothed_surface) sized(ls.displacement, size_t(nv) * size_t(nl));
-  CurvatureOptions co;
-  co.derivatives = relief;
   ls.space = scale_space(surface, levels.sigma, level_space_options(opt), [&](int k, const Surface& smoothed) {
     if (opt.progress) opt.progress(5 + 80 * k / nl, "Optimal scale: scale space and strengths");
-    const Curvature c = compute_curvature(smoothed, co);
+    const std::shared_ptr<const Curvature> curvature = smoothed.curvature(CurvatureEstimator::Jet, relief);
+    const Curvature& c = *curvature;
     const std::vector<Vec3>& x = smoothed.mesh().vertices;
 #pragma omp parallel for schedule(static)
     for (int v = 0; v < nv; ++v) {

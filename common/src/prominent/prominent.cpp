@@ -185,7 +185,7 @@ void take_relief_fields(ReliefEdgeFields&& re, ProminentFieldResult& out) {
 // Per vertex: the prominent direction r_p (eq. 6.2) and whether p is a feature point (eq. 6.4,
 // with the thresholds scaled by 2 / theta; see ProminentFieldParams::theta).
 void prominent_directions(const ProminentFieldParams& p, ProminentFieldResult& out) {
-  const Curvature& c = out.curvature;
+  const Curvature& c = *out.curvature;
   const int nv = static_cast<int>(c.k1.size());
   // kappa_0: the curvature of the scan's most curved tenth (see kFeatureCurvaturePercentile).
   std::vector<double> maxabs(nv);
@@ -242,7 +242,7 @@ ProminentFieldResult compute_prominent_field(const Surface& surface, const Promi
   take_relief_fields(std::move(re), out);
   out.tilt_threshold = weak_tilt;
   prominent_directions(p, out);
-  const Curvature& c = out.curvature;
+  const Curvature& c = *out.curvature;
   const double h = out.scale.edge;
   solve_prominent_field(surface, c.normal, c.dir1, out.prominent, out.beta, p.constraint_weight / (h * h),
                         p.representation, out);
@@ -404,7 +404,7 @@ FlowState flow_start(const Surface& surface, const EnhanceResult& out) {
   const double min_cos = std::cos(kFlowMaxTilt);
   for (int v = 0; v < nv; ++v)
     if (s.near[v] < 0.01 || topo.border.offset[v + 1] > topo.border.offset[v] ||
-        out.field.curvature.normal[v].dot(nb[v]) < min_cos)
+        out.field.curvature->normal[v].dot(nb[v]) < min_cos)
       s.stopped[v] = 1;
   return s;
 }
@@ -418,12 +418,11 @@ std::vector<Vec3> flow_positions(const EnhanceResult& out, const std::vector<dou
   return pos;
 }
 
-// The curvature along the field at the current positions (`c`: the curvature there, for its
-// normals). Neighbours along a feature move together (the jet fits' noise made outlines jagged).
-std::vector<double> flow_curvature(const Surface& current, const std::vector<Vec3>& field, double h, Curvature& c) {
-  CurvatureOptions co;
-  co.derivatives = false;
-  c = compute_curvature(current, co);
+// The curvature along the field at the current positions, diffused over h: neighbours along a
+// feature move together (the jet fits' noise made outlines jagged).
+std::vector<double> flow_curvature(const Surface& current, const std::vector<Vec3>& field, double h) {
+  const std::shared_ptr<const Curvature> curvature = current.curvature(CurvatureEstimator::Jet, false);
+  const Curvature& c = *curvature;
   const int nv = current.n_vertices();
   std::vector<double> kp(nv);
 #pragma omp parallel for schedule(static)
@@ -521,8 +520,7 @@ void inverse_curvature_flow(const Surface& surface, const EnhanceParams& p, Enha
   for (int it = 0; it < max_it; ++it) {
     if (p.progress) p.progress(30 + 70 * it / std::max(1, max_it), "Inverse-curvature flow");
     const Surface current = surface.with_positions(flow_positions(out, s.u));
-    Curvature c;
-    const std::vector<double> kp = flow_curvature(current, f.field, f.scale.edge, c);
+    const std::vector<double> kp = flow_curvature(current, f.field, f.scale.edge);
     if (it == 0) {
       std::vector<double> a;
       for (size_t v = 0; v < kp.size(); ++v)
@@ -531,7 +529,7 @@ void inverse_curvature_flow(const Surface& surface, const EnhanceParams& p, Enha
       if (!(kappa_ref > 0)) break;
       cap_heights(p.strength, kp, out.extremum_radius, f.noise.sigma, step_one_move(surface, out), s);
     }
-    const FlowMoves m = move_vertices(kp, kappa_ref, max_move, c.normal, s, out);
+    const FlowMoves m = move_vertices(kp, kappa_ref, max_move, current.curvature(CurvatureEstimator::Jet, false)->normal, s, out);
     out.flow_iterations = it + 1;
     if (it == 0) first_moving = m.moving, first_total = m.total;
     if (p.flow_iterations < 0 && (m.moving <= kFlowSettledShare * first_moving ||

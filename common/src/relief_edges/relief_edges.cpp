@@ -63,7 +63,7 @@ double noise_tilt(const NoisePatch& patch, double presmoothing_edges) {
   std::vector<double> tilt;
   for (int v = 0; v < surface.n_vertices(); ++v) {
     if (!inside_noise_patch(v, patch.cells, margin)) continue;
-    tilt.push_back(std::acos(std::clamp(sc.curvature.normal[v].z(), -1.0, 1.0)));
+    tilt.push_back(std::acos(std::clamp(sc.curvature->normal[v].z(), -1.0, 1.0)));
   }
   return kNoiseTiltFactor * percentile(tilt, kNoiseCurvePercentile);
 }
@@ -90,7 +90,7 @@ void resolve_lengths(const TriMesh& mesh, const ReliefEdgeParams& p, ReliefEdgeF
   const double h = r.scale.edge;
   p.base_scale.check("Base surface scale", 0.5, 10000, h);
   p.edge_smoothing.check("Edge smoothing", 0, 100, h);
-  r.feature_width = feature_width(mesh, r.curvature, r.scale, r.topology.get());
+  r.feature_width = feature_width(mesh, *r.curvature, r.scale, r.topology.get());
   r.base_scale = p.base_scale.resolve(h, std::max(automatic_base_scale(r.scale), kBaseScaleWidths * r.feature_width));
   r.edge_smoothing = p.edge_smoothing.resolve(h, ReliefEdgeParams::kDefaultEdgeSmoothingEdges * h);
   r.fit_radius = std::max(p.fit_radius_edges * h, kFitRadiusWidths * r.feature_width);
@@ -103,7 +103,7 @@ struct EdgeFrames {
   std::vector<char> strong_base;
 };
 EdgeFrames edge_frames(const ReliefEdgeParams& p, ReliefEdgeFields& r) {
-  const Curvature& c = r.curvature;
+  const Curvature& c = *r.curvature;
   const int nv = static_cast<int>(c.k1.size());
   EdgeFrames e;
   e.best.resize(nv), e.base.resize(nv), e.strong_base.assign(nv, 0);
@@ -156,7 +156,7 @@ double base_curvature(const ReliefEdgeGuidance& guide, const Curvature& c, int v
 // intensity, the model's fit error and G = g^T II g. Returns g in the principal frame.
 std::vector<Vec2> edge_model(const ReliefEdgeParams& p, const ReliefEdgeGuidance& guide, const EdgeFrames& e,
                              ReliefEdgeFields& r) {
-  const Curvature& c = r.curvature;
+  const Curvature& c = *r.curvature;
   const int nv = static_cast<int>(c.k1.size());
   const double cos_w = std::cos(r.window), sin_w = std::sin(r.window);
   sized(r.G, size_t(nv));
@@ -188,7 +188,7 @@ std::vector<Vec2> edge_model(const ReliefEdgeParams& p, const ReliefEdgeGuidance
 // Step 5, edge smoothing (eq. 4.18): smooth G, then recover directions giving the smoothed value,
 // nearest to the current ones; where none exists, the nearest value.
 void smooth_edges(const Surface& surface, const ReliefEdgeGuidance& guide, std::vector<Vec2>& g2, ReliefEdgeFields& r) {
-  const Curvature& c = r.curvature;
+  const Curvature& c = *r.curvature;
   const int nv = static_cast<int>(c.k1.size());
   std::vector<double> Gs = r.G;
   diffuse(surface, r.edge_smoothing, Gs);
@@ -294,7 +294,7 @@ void check_guidance(const ReliefEdgeGuidance& guide, size_t nv) {
 
 // The tilt across the edge at every vertex: asin of the base normal's tangential part along g.
 std::vector<double> tilt_across_edges(const ReliefEdgeFields& r) {
-  const Curvature& c = r.curvature;
+  const Curvature& c = *r.curvature;
   const int nv = static_cast<int>(c.k1.size());
   std::vector<double> across;
   sized(across, size_t(nv));
@@ -317,7 +317,7 @@ ReliefEdgeFields compute_relief_edge_fields(const Surface& surface, const Relief
   // Step 1: scale, noise, pre-smoothing and curvature with derivatives (shared first stage).
   static_cast<ScaledCurvature&>(r) = begin_curve_filter(surface, p);
   resolve_lengths(mesh, p, r);
-  const Curvature& c = r.curvature;
+  const Curvature& c = *r.curvature;
 
   // Step 2: the base surface's normals.
   if (p.progress) p.progress(60, "Base normals");
@@ -346,7 +346,7 @@ ReliefEdgeFields compute_relief_edge_fields(const Surface& surface, const Relief
 
 Polylines relief_edge_crossings(const Surface& surface, const ReliefEdgeFields& r, const ReliefEdgeGuidance& guide) {
   const TriMesh& mesh = surface.mesh();
-  const Curvature& c = r.curvature;
+  const Curvature& c = *r.curvature;
   if (r.G.size() != size_t(mesh.n_vertices()))
     throw std::invalid_argument("relief_edge_crossings: the fields have another vertex count than the mesh");
   check_guidance(guide, r.G.size());

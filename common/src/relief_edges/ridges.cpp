@@ -1,5 +1,6 @@
 #include "reliefkit/relief_edges/ridges.h"
 #include "reliefkit/base/curve_selection.h"
+#include "reliefkit/base/smoothing.h"
 
 #include <algorithm>
 #include <cmath>
@@ -103,11 +104,10 @@ RidgeStrengths noise_ridge_strengths(const NoisePatch& noise_patch, double presm
   const Surface& patch = *noise_patch.surface;
   const int n = noise_patch.cells;
   const double edge = patch.scale().edge;
-  CurvatureOptions co;  // (the patch's own noise is not needed)
-  co.estimator = p.estimator;
-  co.smoothing_scale = presmoothing_edges * edge;
-  co.derivatives = true;
-  const Curvature c = compute_curvature(patch, co);
+  // (the patch's own noise is not needed)
+  const std::shared_ptr<const Curvature> curvature =
+      smoothed_surface(patch, presmoothing_edges * edge).curvature(p.estimator, true);
+  const Curvature& c = *curvature;
   const int margin = noise_patch_margin(presmoothing_edges);
   auto floor = [&](bool valleys) {
     const Polylines all = ridge_lines(patch.mesh(), c, valleys, 0.0);
@@ -140,8 +140,8 @@ RidgeValleyResult compute_ridges_valleys(const Surface& surface, const RidgeVall
   static_cast<ScaledCurvature&>(r) = begin_curve_filter(surface, p);
   r.min_length = p.min_length_edges * r.scale.edge;
   if (p.progress) p.progress(90, "Ridges and valleys");
-  std::vector<double> kmax(r.curvature.k1.size()), kmin(r.curvature.k2.size());
-  for (size_t v = 0; v < kmax.size(); ++v) kmax[v] = std::abs(r.curvature.k1[v]), kmin[v] = std::abs(r.curvature.k2[v]);
+  std::vector<double> kmax(r.curvature->k1.size()), kmin(r.curvature->k2.size());
+  for (size_t v = 0; v < kmax.size(); ++v) kmax[v] = std::abs(r.curvature->k1[v]), kmin[v] = std::abs(r.curvature->k2[v]);
   kmax = counted_values(kmax, r.scale.counts);
   kmin = counted_values(kmin, r.scale.counts);
   // Segments below relative x the noise term are never kept: only their strengths are collected.
@@ -157,8 +157,8 @@ RidgeValleyResult compute_ridges_valleys(const Surface& surface, const RidgeVall
   };
   const double noise_r = noise_scale(kmax), noise_v = noise_scale(kmin);
   const double floor = p.linking.weak_ratio * p.relative_threshold * kNoiseFactor;
-  CandidateCrossings cand_r = ridge_candidates(mesh, r.curvature, false, floor * noise_r);
-  CandidateCrossings cand_v = ridge_candidates(mesh, r.curvature, true, floor * noise_v);
+  CandidateCrossings cand_r = ridge_candidates(mesh, *r.curvature, false, floor * noise_r);
+  CandidateCrossings cand_v = ridge_candidates(mesh, *r.curvature, true, floor * noise_v);
   for (double x : cand_r.all_strengths) r.strongest_ridge = std::max(r.strongest_ridge, x);
   for (double x : cand_v.all_strengths) r.strongest_valley = std::max(r.strongest_valley, x);
   // At least what noise alone draws after the same pre-smoothing (on the noise patch).

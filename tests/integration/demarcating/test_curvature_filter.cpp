@@ -97,8 +97,8 @@ TEST(CurvatureFilter, ExampleScriptOnTheCoinScan) {
     ASSERT_TRUE(std::isfinite(q[v]));
     pos += q[v] > 0;
     neg += q[v] < 0;
-    worst = std::max(worst, std::abs(q[v] - sc.curvature.mean(int(v))));
-    scale = std::max(scale, std::abs(sc.curvature.mean(int(v))));
+    worst = std::max(worst, std::abs(q[v] - sc.curvature->mean(int(v))));
+    scale = std::max(scale, std::abs(sc.curvature->mean(int(v))));
   }
   std::printf("coin: largest |difference| filter vs core %.3g (largest |H| %.3g)\n", worst, scale);
   EXPECT_LT(worst, 1e-5 * scale);  // float storage in MeshLab

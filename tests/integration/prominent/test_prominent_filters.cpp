@@ -57,7 +57,7 @@ TEST(ProminentFilters, FieldQualityIsTheCurvatureAlongTheCoresField) {
   const reliefkit::ProminentFieldResult f = reliefkit::compute_prominent_field(read_mesh(dir + "/in.ply").mesh);
   double worst = 0, scale = 0;
   for (size_t v = 0; v < q.size(); ++v) {
-    const double kp = f.curvature.normal_curvature(int(v), f.field[v]);
+    const double kp = f.curvature->normal_curvature(int(v), f.field[v]);
     worst = std::max(worst, std::abs(q[v] - kp));
     scale = std::max(scale, std::abs(kp));
   }

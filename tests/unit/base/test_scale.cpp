@@ -105,8 +105,8 @@ TEST(Scale, CleanMeshIsNotPresmoothedAndCurvatureStaysExact) {
   for (int i = 0; i < m.n_vertices(); ++i) {
     double u, v;
     rktest::torus_params(R, r, m.vertices[i], u, v);
-    e1.push_back(std::abs(sc.curvature.k1[i] - 1 / r));
-    e2.push_back(std::abs(sc.curvature.k2[i] - std::cos(v) / (R + r * std::cos(v))));
+    e1.push_back(std::abs(sc.curvature->k1[i] - 1 / r));
+    e2.push_back(std::abs(sc.curvature->k2[i] - std::cos(v) / (R + r * std::cos(v))));
   }
   std::printf("clean jittered torus at defaults: median error k1 %.4f %%, k2 %.4f %%\n", 100 * rktest::median(e1),
               100 * rktest::median(e2));

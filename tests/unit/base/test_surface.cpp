@@ -53,6 +53,25 @@ TEST(Surface, NewPositionsShareTheRunButNotThePositionsData) {
   EXPECT_THROW(s.with_positions({Vec3::Zero()}), InputError);
 }
 
+TEST(Surface, CurvatureIsComputedOncePerPositions) {
+  const TriMesh m = rktest::sphere(1, 3);
+  const Surface s = Surface::borrow(m);
+  reset_work_counts();
+  const auto with_derivatives = s.curvature(CurvatureEstimator::Jet, true);
+  EXPECT_EQ(s.curvature(CurvatureEstimator::Jet, true), with_derivatives);
+  EXPECT_EQ(s.curvature(CurvatureEstimator::Jet, false), with_derivatives);  // served by the fuller one
+  EXPECT_EQ(curvature_at_scale(s, Length::in_edges(0), CurvatureEstimator::Jet, nullptr).curvature, with_derivatives);
+  EXPECT_EQ(work_counts()[Work::Curvature], 1) << work_counts().summary();
+  EXPECT_NE(s.curvature(CurvatureEstimator::FaceFit, false), with_derivatives);  // another estimator
+  std::vector<Vec3> doubled = m.vertices;
+  for (auto& p : doubled) p *= 2;
+  const auto moved = s.with_positions(doubled).curvature(CurvatureEstimator::Jet, false);
+  EXPECT_EQ(work_counts()[Work::Curvature], 3) << work_counts().summary();
+  // The sphere's curvature, 1 at its positions and 1/2 at twice them: never the other's.
+  EXPECT_NEAR(with_derivatives->k1[0], 1.0, 0.05);
+  EXPECT_NEAR(moved->k1[0], 0.5, 0.025);
+}
+
 TEST(Surface, RepairHandsOverTheAdjacencyOfTheRepairedMesh) {
   // A sphere with faces turned, a vertex repeated per face in part (welded) and a face twice.
   TriMesh m = rktest::sphere(1, 3);

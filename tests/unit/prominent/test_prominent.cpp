@@ -64,7 +64,7 @@ FieldScore field_score(const reliefkit::TriMesh& m, const ProminentFieldResult& 
     const double rr = std::hypot(x.x(), x.y());
     if (std::abs(rr - 0.5) < band && rr > 0) {
       const Vec3 radial(x.x() / rr, x.y() / rr, 0);
-      const Vec3& n = r.curvature.normal[v];
+      const Vec3& n = r.curvature->normal[v];
       err.push_back(line_angle(r.field[v], radial - n * n.dot(radial)));
       strength.push_back(r.strength[v]);
     } else if (std::abs(rr - 0.5) > 3 * band) {
@@ -121,7 +121,7 @@ TEST(ProminentField, BetweenRidgeAndEdgeTheDirectionBlendsAsEq62Says) {
   double worst_alpha = 0, worst_angle = 0, sum = 0;
   int n = 0;
   for (int v = 0; v < m.n_vertices(); ++v) {
-    const double a1 = std::abs(r.curvature.k1[v]), a2 = std::abs(r.curvature.k2[v]);
+    const double a1 = std::abs(r.curvature->k1[v]), a2 = std::abs(r.curvature->k2[v]);
     const double big = std::max(a1, a2), small = std::min(a1, a2), k = small > 0 ? big / small : 1e300;
     const double alpha = big < k0 || k < 2 ? 1.0 : k > 4 ? 0.0 : (4 - k) / 2;  // eq. 6.2
     worst_alpha = std::max(worst_alpha, std::abs(r.alpha[v] - alpha));
@@ -451,7 +451,7 @@ TEST(ProminentColoring, MonotoneInTheProminentCurvatureAndScaleFree) {
   s.noise = 0.05;
   const rktest::Relief disc = rktest::disc_on_plane(s, 100);
   const ProminentFieldResult f = compute_prominent_field(disc.mesh);
-  const ColoringResult c = curvature_coloring(f.curvature, &f.field, f.scale.counts, ColoringCurvature::Prominent, 1.0);
+  const ColoringResult c = curvature_coloring(*f.curvature, &f.field, f.scale.counts, ColoringCurvature::Prominent, 1.0);
   // Monotone: sorted by kappa_p, the grey never decreases.
   std::vector<int> order(c.curvature.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = int(i);
@@ -477,12 +477,12 @@ TEST(ProminentColoring, MonotoneInTheProminentCurvatureAndScaleFree) {
   EXPECT_NEAR(c.lambda * ref, 1.0, 1e-12);
   EXPECT_NEAR(share, 0.1, 5e-4);
   for (size_t v = 0; v < order.size(); ++v)  // kappa_p is the curvature along the field
-    ASSERT_NEAR(c.curvature[v], f.curvature.normal_curvature(int(v), f.field[v]), 1e-9);
+    ASSERT_NEAR(c.curvature[v], f.curvature->normal_curvature(int(v), f.field[v]), 1e-9);
   // x 1000: the same colours.
   reliefkit::TriMesh big = disc.mesh;
   for (auto& x : big.vertices) x *= 1000;
   const ProminentFieldResult fb = compute_prominent_field(big);
-  const ColoringResult cb = curvature_coloring(fb.curvature, &fb.field, fb.scale.counts, ColoringCurvature::Prominent, 1.0);
+  const ColoringResult cb = curvature_coloring(*fb.curvature, &fb.field, fb.scale.counts, ColoringCurvature::Prominent, 1.0);
   double worst = 0;
   for (size_t v = 0; v < c.grey.size(); ++v) worst = std::max(worst, std::abs(c.grey[v] - cb.grey[v]));
   std::printf("[prominent coloring] lambda %.4g (mesh x1: %.4g, x1000: %.4g); largest grey difference x1 vs x1000: %.2e\n",
@@ -523,7 +523,7 @@ TEST(ProminentBadInput, RefusedWithAClearMessage) {
   }
   const ProminentFieldResult f = compute_prominent_field(ok);
   for (double lambda : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN()})
-    EXPECT_NE(message([&] { curvature_coloring(f.curvature, &f.field, {}, ColoringCurvature::Prominent, lambda); })
+    EXPECT_NE(message([&] { curvature_coloring(*f.curvature, &f.field, {}, ColoringCurvature::Prominent, lambda); })
                   .find("lambda"),
               std::string::npos)
         << lambda;
@@ -544,7 +544,7 @@ TEST(ProminentBadInput, AwkwardMeshesGiveFiniteResults) {
       ASSERT_TRUE(r.positions[v].allFinite()) << v;
       ASSERT_TRUE(r.field.field[v].allFinite()) << v;
     }
-    const ColoringResult c = curvature_coloring(r.field.curvature, &r.field.field, {}, ColoringCurvature::Prominent, 1);
+    const ColoringResult c = curvature_coloring(*r.field.curvature, &r.field.field, {}, ColoringCurvature::Prominent, 1);
     for (double g : c.grey) ASSERT_TRUE(g > 0 && g < 1);
   }
 }

@@ -92,7 +92,9 @@ struct ScaledCurvature {
   MeshScale scale;
   NoiseEstimate noise;
   double presmoothing = 0;  // used, mesh units
-  Curvature curvature;
+  /// Of the pre-smoothed surface (Surface::curvature of smoothed_surface(surface, presmoothing)),
+  /// shared with the run's Surface when there is no pre-smoothing.
+  std::shared_ptr<const Curvature> curvature;
 };
 /// The surface's topology, scale and noise come from the run's Surface (computed there once).
 ScaledCurvature curvature_at_scale(const Surface& surface, const Length& presmoothing, CurvatureEstimator estimator,

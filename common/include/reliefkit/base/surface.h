@@ -3,8 +3,8 @@
 // A filter run repairs its copy of the layer, then hands a Surface to the cores. What never
 // changes during the run — the connectivity (vertex-face adjacency, rings, border), the scan's
 // scale (edge length, parts) and its noise level — is computed on first request and then kept;
-// what depends on the positions — normals and the cotangent Laplacian with its mass matrix — is
-// kept per set of positions. A stage that moves the vertices (pre-smoothing, a scale-space level,
+// what depends on the positions — normals, the cotangent Laplacian with its mass matrix, and the
+// curvature (curvature.h) — is kept per set of positions. A stage that moves the vertices (pre-smoothing, a scale-space level,
 // a deformation) asks for `with_positions(p)`: a Surface that shares the run's connectivity, scale
 // and noise with its origin but computes its own position-dependent data, so a change of
 // positions can never serve a stale Laplacian (the idea of geometry-central's require*()).
@@ -19,6 +19,9 @@
 #include "reliefkit/base/scale.h"
 
 namespace reliefkit {
+
+struct Curvature;
+enum class CurvatureEstimator;
 
 class Surface {
  public:
@@ -46,6 +49,11 @@ class Surface {
   // Of these positions.
   const std::vector<Vec3>& normals() const;
   const LaplacianResult& laplacian(const LaplacianOptions& options = {}) const;
+  /// The curvature at these positions (no smoothing: a smoothed surface is with_positions of its
+  /// own), with the derivative tensor if asked; a result with derivatives also serves a request
+  /// without. Shared: it stays valid after the Surface is gone.
+  std::shared_ptr<const Curvature> curvature(CurvatureEstimator estimator, bool derivatives,
+                                             Progress progress = nullptr) const;
 
   /// The same surface at other positions (one per vertex).
   Surface with_positions(std::vector<Vec3> positions) const;
