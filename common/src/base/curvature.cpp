@@ -463,8 +463,7 @@ Curvature compute_curvature(const TriMesh& input, const CurvatureOptions& opt) {
 
 static Curvature compute_checked_curvature(const Surface& input, const CurvatureOptions& opt) {
   count_work(Work::Curvature);
-  report(opt.progress, 0, "Vertex adjacency");
-  const VertexFaces& vf = input.topology().faces;
+  const VertexFaces& vf = input.topology().faces;  // the run's (its building is reported by curvature_at_scale)
   // Pre-smoothing: the curvature of a diffused copy of the surface is reported at the
   // original vertices.
   if (opt.smoothing_scale > 0) report(opt.progress, 5, "Pre-smoothing");

@@ -11,12 +11,15 @@ namespace {
 
 // What a ridge (k1 along t1) or valley (k2 along t2) line is a zero crossing of, and its strength.
 struct RidgeField {
+  RidgeField() = default;
+  RidgeField(const RidgeField&) = delete;  // `view` points into this object's own arrays
+  RidgeField& operator=(const RidgeField&) = delete;
   std::vector<double> value, strength;
   DirectionalFieldView view;
   ZeroCrossingOptions options;
 };
 
-// `field` is filled in place: its view points into its own arrays (it must not be copied).
+// `field` is filled in place: its view points into its own arrays.
 void make_ridge_field(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength, RidgeField& field) {
   if (c.dcurv.size() != c.k1.size()) throw InputError("ridges and valleys need the curvature derivative tensor");
   const int nv = mesh.n_vertices();
