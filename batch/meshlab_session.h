@@ -1,6 +1,7 @@
 // reliefkit-batch — what the worker needs of the installed MeshLab, in the same words for both
 // release lines: MeshLab 2020.09 (meshlab_session_2020.cpp: PluginManager, MeshFilterInterface)
-// and 2022.02 (meshlab_session_2022.cpp: the plugin manager singleton, FilterPlugin, MLException).
+// and 2022.02 / 2025.07 (meshlab_session_filterplugin.cpp: the plugin manager singleton,
+// FilterPlugin, MLException).
 // RELIEFKIT_MESHLAB_API chooses the file; worker_meshlab.cpp uses only this.
 #pragma once
 

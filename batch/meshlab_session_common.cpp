@@ -87,10 +87,10 @@ void set_from_text(RichParameterList& list, const RichParameter& p, const QStrin
   } else if (v.isColor()) {
     ok = QColor(text).isValid();
     list.setValue(name, ColorValue(QColor(text)));
-  } else if (v.isPoint3f()) {
+  } else if (ml::is_point3(v)) {
     const QStringList xyz = text.split(',');
     ok = xyz.size() == 3;
-    if (ok) list.setValue(name, Point3fValue(Point3m(xyz[0].toFloat(), xyz[1].toFloat(), xyz[2].toFloat())));
+    if (ok) list.setValue(name, ml::Point3Value(Point3m(xyz[0].toFloat(), xyz[1].toFloat(), xyz[2].toFloat())));
   } else {
     throw std::runtime_error("parameter " + name.toStdString() + " cannot be given on the command line: use an .mlx script");
   }
@@ -107,8 +107,8 @@ QString parameter_text(const RichParameter& p) {
   if (v.isFileName()) return v.getFileName();
 #endif
   if (v.isColor()) return v.getColor().name();
-  if (v.isPoint3f()) {
-    const Point3m q = v.getPoint3f();
+  if (ml::is_point3(v)) {
+    const Point3m q = ml::point3_of(v);
     return QString("%1,%2,%3").arg(double(q[0]), 0, 'g', 7).arg(double(q[1]), 0, 'g', 7).arg(double(q[2]), 0, 'g', 7);
   }
   return "(" + p.name() + ")";

@@ -37,7 +37,7 @@ const QStringList kWeights{"By curve strength (three weights)", "By layer (the f
 const QStringList kSections{"None", "Vertical (profile to the right)", "Horizontal (profile below)"};
 
 void plate_parameters(const MeshModel&, RichParameterList& par) {
-  par.addParam(RichSaveFile("file", "", "*.svg", "Plate file (SVG)",
+  par.addParam(ml::RichSaveFile("file", "", "*.svg", "Plate file (SVG)",
                             "Where the plate goes (a relative name: beside the mesh's file). Empty: <mesh>-plate.svg "
                             "beside the mesh's file."));
   par.addParam(RichBool("pdf", true, "Also as PDF", "Writes the same page as a PDF beside the SVG."));

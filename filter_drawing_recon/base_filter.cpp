@@ -2,6 +2,8 @@
 #include <QCoreApplication>
 #include <QDir>
 #include <QFileInfo>
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -44,10 +46,21 @@ const char* kBaseCitation =
     "M. Kolomenkin, G. Leifman, I. Shimshoni, A. Tal, <b>\"Reconstruction of relief objects from line "
     "drawings\"</b>, CVPR 2011; thesis chapter 7, section 7.5.";
 
-// The library the build made, in the private prefix (or an installed tree): <bin>/../share/reliefkit/bases.
+// The folder this plugin's library was loaded from (MeshLab's plugin folder, or a user's
+// MeshLabExtraPlugins/<version>), empty if unknown.
+QString plugin_folder() {
+  Dl_info info{};
+  if (!dladdr(reinterpret_cast<void*>(&plugin_folder), &info) || !info.dli_fname) return {};
+  return QFileInfo(QString::fromLocal8Bit(info.dli_fname)).absolutePath();
+}
+
+// The library the build made: installed beside the plugins (cmake --install, the user's plugin
+// folder: reliefkit-bases/), or in the private prefix (<bin>/../share/reliefkit/bases).
 QString shipped_library() {
-  const QString dir = QDir::cleanPath(QCoreApplication::applicationDirPath() + "/../share/reliefkit/bases");
-  return QFileInfo(dir).isDir() ? dir : QString();
+  for (const QString& dir : {plugin_folder() + "/reliefkit-bases",
+                             QCoreApplication::applicationDirPath() + "/../share/reliefkit/bases"})
+    if (QFileInfo(QDir::cleanPath(dir)).isDir()) return QDir::cleanPath(dir);
+  return {};
 }
 
 void base_parameters(const MeshModel&, RichParameterList& par) {
@@ -117,8 +130,8 @@ BaseSettings read_base_settings(FilterCall& call) {
   if (s.library_dir.isEmpty()) {
     s.library_dir = shipped_library();
     if (s.library_dir.isEmpty())
-      throw InputError("ReliefKit's library of base models is not beside this MeshLab (share/reliefkit/bases next to its "
-                       "bin folder): give its folder in \"Model library folder\" (build/bases in a build tree).");
+      throw InputError("ReliefKit's library of base models is not beside this plugin (reliefkit-bases in its folder) nor "
+                       "this MeshLab (share/reliefkit/bases next to its bin folder): give its folder in \"Model library folder\" (build/bases in a build tree).");
   } else if (s.library_dir.compare("none", Qt::CaseInsensitive) == 0) {
     s.library_dir.clear();
   }

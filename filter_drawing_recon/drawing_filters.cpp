@@ -181,7 +181,7 @@ void apply_curves(FilterCall& call) {
 
 void relief_parameters(const MeshModel&, RichParameterList& par) {
   drawing_parameters(par);
-  par.addParam(RichOpenFile("interpretation", "", QStringList{"*.json"}, "Interpretation file",
+  par.addParam(ml::RichOpenFile("interpretation", "", QStringList{"*.json"}, "Interpretation file",
                             "Empty: automatic. Otherwise a JSON interpretation file (as this filter writes beside the "
                             "image, edited): its curves' directions, weights and profiles are kept."));
   par.addParam(RichEnum("ground", 0, kGrounds, "Ground level",

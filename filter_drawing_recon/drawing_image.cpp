@@ -10,7 +10,7 @@ const QStringList& drawing_image_extensions() {
 }
 
 void add_drawing_image_parameter(RichParameterList& par, const QString& help) {
-  par.addParam(RichOpenFile("drawing", "", drawing_image_extensions(), "Drawing image", help));
+  par.addParam(ml::RichOpenFile("drawing", "", drawing_image_extensions(), "Drawing image", help));
 }
 
 void add_dpi_and_scale_parameters(RichParameterList& par) {

@@ -1,5 +1,5 @@
 # Sourced: with_root_mounts ROOT SOURCE_TREE — /proc, /dev and /dev/pts of the host and the source
-# tree mounted in the Debian 13 root until the calling script exits. The tree is seen in the root
+# tree mounted in the Debian root (scripts/meshlab-root.sh) until the calling script exits. The tree is seen in the root
 # at $tree_in_root, /src/reliefkit-<hash of its path>: two clones (a developer's and CI's) can use
 # the root at once.
 _rk_mounts=()

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# The pictures of ReliefKit in MeshLab 2022.02's GUI (docs/meshlab2022.md): MeshLab 2022.02 of the
-# Debian 13 root (scripts/meshlab2022-root.sh, build-2022/ by scripts/build-2022.sh) on a virtual
+# The pictures of ReliefKit in MeshLab 2022.02's GUI (docs/meshlab-releases.md): MeshLab 2022.02 of the
+# Debian 13 root (scripts/meshlab-root.sh 2022, build-2022/ by scripts/build-release.sh 2022) on a virtual
 # display of this machine, driven with xdotool: the coin opened, the Filters menu with ours,
 # MeshLab's filter search finding them, the Demarcating Curves dialog, and its result. Needs root
 # (chroot, mount).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-root="$(bash "$here/scripts/meshlab2022-root.sh")"
+root="$(bash "$here/scripts/meshlab-root.sh" 2022)"
 img="$here/docs/img"
 source "$here/scripts/chroot-mounts.sh"
 with_root_mounts "$root" "$here"

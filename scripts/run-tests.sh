@@ -4,8 +4,9 @@
 # tests with AddressSanitizer + UndefinedBehaviorSanitizer and those tests, beside a bounded
 # libFuzzer run over the cores (its own clang build with the sanitizers and coverage; libFuzzer's
 # comparison tracing made the unit tests up to 60x slower, so they are not run in that build);
-# last, the build against MeshLab 2022.02 in a Debian 13 root and every filter's outputs compared
-# with the 2020.09 build's. Compiles through ccache (scripts/setup.sh installs it; CMakeLists.txt sets it up so that a clone
+# last, the builds against MeshLab 2022.02 and 2025.07 in Debian 13 and Debian testing roots, every
+# filter's outputs compared with the 2020.09 build's, and MeshLab 2025.07 loading the plugins from
+# a user's plugin folder. Compiles through ccache (scripts/setup.sh installs it; CMakeLists.txt sets it up so that a clone
 # in another folder hits the same cache). Prints the time of each stage at the end.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -98,13 +99,19 @@ sanitized_tests_beside_fuzzing() {
 stage "unit tests with AddressSanitizer + UndefinedBehaviorSanitizer, beside fuzzing the cores" \
   sanitized_tests_beside_fuzzing
 
-# MeshLab 2022.02 (Debian 13's, in a root made by debootstrap once and kept in
-# /var/cache/reliefkit): the build against its FilterPlugin API, then every filter at its defaults
-# through reliefkit-batch on both releases, the outputs compared (docs/meshlab2022.md).
+# MeshLab 2022.02 (Debian 13's) and 2025.07 (Debian testing's), each in a root made by debootstrap
+# once and kept in /var/cache/reliefkit: the builds against their FilterPlugin API, every filter at
+# its defaults through reliefkit-batch on all three releases, the outputs compared with 2020.09's
+# (docs/meshlab-releases.md), and MeshLab 2025.07's GUI loading the plugins from the user's folder.
 if [ "$(id -u)" -eq 0 ]; then
-  stage "MeshLab 2022.02: the Debian 13 root (made once, then kept)" bash "$here/scripts/meshlab2022-root.sh"
-  stage "MeshLab 2022.02: build (FilterPlugin adapter, plugins, reliefkit-batch)" bash "$here/scripts/build-2022.sh"
-  stage "MeshLab 2022.02 against 2020.09: every filter's outputs compared" bash "$here/tests/releases/compare-releases.sh"
+  for release in 2022 2025; do
+    stage "MeshLab $release: its Debian root (made once, then kept)" bash "$here/scripts/meshlab-root.sh" "$release"
+    stage "MeshLab $release: build (FilterPlugin adapter, plugins, reliefkit-batch)" bash "$here/scripts/build-release.sh" "$release"
+  done
+  stage "MeshLab 2022.02 and 2025.07 against 2020.09: every filter's outputs compared" \
+    bash "$here/tests/releases/compare-releases.sh" 2022 2025
+  stage "MeshLab 2025.07's GUI: the plugins from the user's MeshLabExtraPlugins folder, a filter run" \
+    bash "$here/tests/releases/user-plugins-gui.sh"
 else
-  echo "The MeshLab 2022.02 stages need root (debootstrap, chroot, mount): run scripts/run-tests.sh as root for them." >&2
+  echo "The MeshLab 2022.02 and 2025.07 stages need root (debootstrap, chroot, mount): run scripts/run-tests.sh as root for them." >&2
 fi

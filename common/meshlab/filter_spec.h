@@ -1,5 +1,5 @@
 // ReliefKit — what a filter is for both MeshLab adapters (2020.09: common/meshlab/rk_plugin.h,
-// 2022.02: common/meshlab2022/rk_plugin.h):
+// 2022.02 and 2025.07: common/meshlab_filterplugin/rk_plugin.h):
 // the FilterSpec table entry, the call an apply function gets, and the run every filter shares
 // (work counts, the heap reserved for it, its exceptions turned into a message).
 #pragma once

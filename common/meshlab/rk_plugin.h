@@ -3,8 +3,8 @@
 // A plugin is one table of FilterSpec entries (name, help, menu class, parameters, apply);
 // this base class answers every MeshFilterInterface call from the table, so adding a filter
 // touches one place. Everything that depends on MeshLab's plugin interface lives in these two
-// files; common/meshlab2022/rk_plugin.h is the same for MeshLab 2022.02's FilterPlugin (chosen at
-// configure time: RELIEFKIT_MESHLAB_API).
+// files; common/meshlab_filterplugin/rk_plugin.h is the same for the FilterPlugin of MeshLab
+// 2022.02 and 2025.07 (chosen at configure time: RELIEFKIT_MESHLAB_API).
 #pragma once
 
 #include "meshlab_api.h"

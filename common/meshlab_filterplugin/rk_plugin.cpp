@@ -1,4 +1,4 @@
-// ReliefKit — the MeshLab 2022.02 adapter (FilterPlugin). See rk_plugin.h.
+// ReliefKit — the MeshLab 2022.02 and 2025.07 adapter (FilterPlugin). See rk_plugin.h.
 #include "rk_plugin.h"
 
 namespace reliefkit::ml {

@@ -1,4 +1,4 @@
-// reliefkit-batch — MeshLab 2022.02 for the worker (the plugin manager singleton, FilterPlugin,
+// reliefkit-batch — MeshLab 2022.02 and 2025.07 for the worker (the plugin manager singleton, FilterPlugin,
 // its IO plugins and load/save utilities, errors as MLException; no OpenGL context). See
 // meshlab_session.h.
 #include <QApplication>
@@ -37,7 +37,7 @@ MeshLabSession::MeshLabSession(const std::string& folder) : impl_(std::make_uniq
   try {
     plugins().loadPlugins(QDir(QString::fromStdString(folder)));
   } catch (const MLException& e) {
-    // MeshLab 2022.02 loads every plugin it can and then reports those it could not (a library of
+    // MeshLab 2022.02 and 2025.07 load every plugin they can and then reports those it could not (a library of
     // theirs missing): the filters of the others work, as in its GUI after the same message.
     std::fprintf(stderr, "%s\n", QString::fromUtf8(e.what()).simplified().toUtf8().constData());
   }

@@ -1,7 +1,8 @@
-// ReliefKit — the thin MeshLab 2022.02 adapter shared by all ReliefKit plugins (FilterPlugin).
+// ReliefKit — the thin adapter for MeshLab 2022.02 and 2025.07 shared by all ReliefKit plugins
+// (FilterPlugin: the same interface in both; the few names that differ are in meshlab_api.h).
 //
 // The same FilterSpec tables as MeshLab 2020.09's adapter (common/meshlab/rk_plugin.h, chosen at
-// configure time: RELIEFKIT_MESHLAB_API) answer MeshLab 2022.02's FilterPlugin: parameters
+// configure time: RELIEFKIT_MESHLAB_API) answer the FilterPlugin: parameters
 // returned as a list, applyFilter's errors thrown as MLException, the log through
 // MeshLabPluginLogger.
 #pragma once

@@ -1,32 +1,40 @@
 #!/usr/bin/env bash
-# A Debian 13 (trixie) root with MeshLab 2022.02, for building and testing ReliefKit against the
-# 2022.02 plugin API (issue 24). Debian 12 does not have MeshLab 2022.02; Debian 13 does, so the
-# root is made with `debootstrap --variant=minbase trixie` and MeshLab, Xvfb and the build
-# dependencies are installed into it from Debian 13's packages. The trixie entry lives only inside
-# the root: the host's package sources are not touched.
+# A Debian root with a newer MeshLab than Debian 12's, for building and testing ReliefKit against
+# that release's plugin API: MeshLab 2022.02 in a Debian 13 (trixie) root (issue 24), MeshLab
+# 2025.07 in a Debian testing (forky) root (issue 41). Debian 12 has neither, so the root is made
+# with `debootstrap --variant=minbase` (forky through the sid script: Debian 12's debootstrap has
+# no forky script) and MeshLab, Xvfb and the build dependencies are installed into it from that
+# suite's packages. The suite's entry lives only inside the root: the host's package sources are
+# not touched.
 #
-#   scripts/meshlab2022-root.sh            # make (or check) the root; prints its path
-#   RELIEFKIT_TRIXIE_ROOT=DIR ...          # where (default /var/cache/reliefkit/trixie-root)
+#   scripts/meshlab-root.sh 2022|2025      # make (or check) the root; prints its path
+#   RELIEFKIT_TRIXIE_ROOT=DIR / RELIEFKIT_FORKY_ROOT=DIR   # where (default /var/cache/reliefkit/<suite>-root)
 #
 # The root is kept between runs (CI finds it on the next run of the same machine) and made again
-# only when its recipe (the package list below) changes. Needs root (debootstrap, chroot).
+# only when its recipe (suite and package list below) changes. Needs root (debootstrap, chroot).
 set -euo pipefail
-here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-root="${RELIEFKIT_TRIXIE_ROOT:-/var/cache/reliefkit/trixie-root}"
-
-# meshlab with the libraries it recommends (some of its own plugins need them), then the build's.
+release="${1:-}"
+# Both suites: meshlab with the libraries it recommends (some of its own plugins need them), Xvfb,
+# then the build's dependencies (Qt 5 in both: Debian builds MeshLab 2025.07 with Qt 5.15).
 PKGS=(meshlab lib3ds-1-3 libmuparser2v5 libopenctm1 libqhull-r8.0 libxerces-c3.2t64
       xvfb xauth build-essential cmake ninja-build pkg-config dpkg-dev ccache
       qtbase5-dev libqt5opengl5-dev libqt5xmlpatterns5-dev libqt5svg5-dev
       libglew-dev libglu1-mesa-dev libeigen3-dev libsuitesparse-dev libopenblas0-pthread libopencv-dev
       nlohmann-json3-dev libgtest-dev libgmock-dev)
-recipe="$(printf '%s\n' "trixie minbase" "${PKGS[@]}" | sha256sum | cut -c1-16)"
+case "$release" in
+  2022) suite=trixie; script=trixie; name="Debian 13"; root="${RELIEFKIT_TRIXIE_ROOT:-/var/cache/reliefkit/trixie-root}" ;;
+  2025) suite=forky; script=/usr/share/debootstrap/scripts/sid; name="Debian testing (forky)"
+        root="${RELIEFKIT_FORKY_ROOT:-/var/cache/reliefkit/forky-root}" ;;
+  *) echo "usage: scripts/meshlab-root.sh 2022|2025 (MeshLab 2022.02 in Debian 13, 2025.07 in Debian testing)" >&2; exit 2 ;;
+esac
+me="meshlab-root.sh $release"
+recipe="$(printf '%s\n' "$suite minbase" "${PKGS[@]}" | sha256sum | cut -c1-16)"
 
 if [ -f "$root/.reliefkit-recipe" ] && [ "$(cat "$root/.reliefkit-recipe")" = "$recipe" ]; then
   echo "$root"
   exit 0
 fi
-[ "$(id -u)" -eq 0 ] || { echo "meshlab2022-root.sh: making the Debian 13 root needs root (debootstrap, chroot)" >&2; exit 1; }
+[ "$(id -u)" -eq 0 ] || { echo "$me: making the $name root needs root (debootstrap, chroot)" >&2; exit 1; }
 
 # The host's Debian mirror (its package sources name it): the root is fetched from the same one.
 host_mirror() {
@@ -37,7 +45,7 @@ host_mirror() {
   if [ -z "$uri" ] && [ -f /etc/apt/sources.list ]; then
     uri="$(awk '$1 == "deb" && $2 !~ /security/ {print $2; exit}' /etc/apt/sources.list)"
   fi
-  [ -n "$uri" ] || { echo "meshlab2022-root.sh: no Debian mirror found in the host's apt sources" >&2; exit 1; }
+  [ -n "$uri" ] || { echo "$me: no Debian mirror found in the host's apt sources" >&2; exit 1; }
   echo "$uri"
 }
 
@@ -67,38 +75,39 @@ mirror="$(host_mirror)"
 t0=$SECONDS
 if [ ! -x "$root/usr/bin/apt-get" ]; then
   rm -rf "$root"; mkdir -p "$(dirname "$root")"
-  echo "meshlab2022-root.sh: debootstrap --variant=minbase trixie $root"
-  debootstrap --variant=minbase trixie "$root" "$mirror" > "$root.debootstrap.log" 2>&1 ||
-    { tail -20 "$root.debootstrap.log" >&2; echo "meshlab2022-root.sh: debootstrap failed (log: $root.debootstrap.log)" >&2; exit 1; }
+  echo "$me: debootstrap --variant=minbase $suite $root" >&2
+  debootstrap --variant=minbase "$suite" "$root" "$mirror" "$script" > "$root.debootstrap.log" 2>&1 ||
+    { tail -20 "$root.debootstrap.log" >&2; echo "$me: debootstrap failed (log: $root.debootstrap.log)" >&2; exit 1; }
 fi
 # The root's own package sources (with deb-src, for `apt-get source meshlab`), the host's apt
-# settings and name resolution.
-cat > "$root/etc/apt/sources.list.d/debian.sources" <<EOF
+# settings (a frozen mirror's expired Release files accepted as on the host) and name resolution.
+cat > "$root/etc/apt/sources.list.d/debian.sources" <<SOURCES
 Types: deb deb-src
 URIs: $mirror
-Suites: trixie
+Suites: $suite
 Components: main
 Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
-EOF
+SOURCES
 rm -f "$root/etc/apt/sources.list"
 cp /etc/apt/apt.conf.d/* "$root/etc/apt/apt.conf.d/" 2>/dev/null || true
 cp -L /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null || true
 mount_system
 chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get update -qq
 chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${PKGS[@]}" > "$root.install.log" 2>&1 ||
-  { tail -20 "$root.install.log" >&2; echo "meshlab2022-root.sh: installing into the root failed (log: $root.install.log)" >&2; exit 1; }
-# MeshLab 2022.02's sources (its plugin API headers and vcglib): the upstream tarball of Debian
-# 13's source package (apt checks it against the signed index; only the tarball is fetched).
+  { tail -20 "$root.install.log" >&2; echo "$me: installing into the root failed (log: $root.install.log)" >&2; exit 1; }
+# MeshLab's sources (its plugin API headers and vcglib): the upstream tarball of the suite's source
+# package (apt checks it against the signed index; only the tarball is fetched).
 version="$(chroot "$root" dpkg-query -W -f='${Version}' meshlab)"
+case "$version" in "$release".*) ;; *) echo "$me: $suite has meshlab $version, not $release.*" >&2; exit 1 ;; esac
 rm -rf "$root/opt/meshlab-src" "$root/opt/apt-source"; mkdir -p "$root/opt/apt-source" "$root/opt/meshlab-src"
 chroot "$root" sh -c "cd /opt/apt-source && apt-get source -qq --tar-only 'meshlab=$version' > /dev/null 2>&1" ||
-  { echo "meshlab2022-root.sh: 'apt-get source --tar-only meshlab=$version' failed inside the root" >&2; exit 1; }
+  { echo "$me: 'apt-get source --tar-only meshlab=$version' failed inside the root" >&2; exit 1; }
 tar -xf "$root"/opt/apt-source/meshlab_*.orig.tar.* -C "$root/opt/meshlab-src" --strip-components=1
 rm -rf "$root/opt/apt-source"
 echo "$version" > "$root/opt/meshlab-src/.debian-version"
 [ -f "$root/opt/meshlab-src/src/common/plugins/interfaces/filter_plugin.h" ] ||
-  { echo "meshlab2022-root.sh: the MeshLab sources in the root have no filter_plugin.h (not the 2022.02 API?)" >&2; exit 1; }
+  { echo "$me: the MeshLab sources in the root have no filter_plugin.h (not the FilterPlugin API?)" >&2; exit 1; }
 chroot "$root" apt-get clean
 echo "$recipe" > "$root/.reliefkit-recipe"
-echo "meshlab2022-root.sh: Debian 13 root ready in $((SECONDS - t0)) s (meshlab $version)" >&2
+echo "$me: $name root ready in $((SECONDS - t0)) s (meshlab $version)" >&2
 echo "$root"
