@@ -42,7 +42,11 @@ cp "$here/examples/data/lamp_figure.png" "$root$home/lamp.png"
 cp "$here/examples/data/jar_half_section.png" "$root$home/jar.png"
 chroot "$root" env DISPLAY="$display" HOME="$home" /usr/bin/meshlab "$home/penny.ply" >"$shots/meshlab.log" 2>&1 &
 export DISPLAY="$display"
-sleep 10
+for _ in $(seq 120); do  # until MeshLab has opened the coin (its log), at most a minute
+  grep -q "All files opened" "$shots/meshlab.log" 2>/dev/null && break
+  sleep 0.5
+done
+sleep 2
 pid="$(pgrep -f "^/usr/bin/meshlab $home" | head -1)"
 [ -n "$pid" ] || { echo "FAIL: MeshLab 2025.07 did not start"; exit 1; }
 mapped="$(grep -c "MeshLabExtraPlugins/2025.07/libfilter_reliefkit_" <(sort -u -k6 "/proc/$pid/maps" | awk '{print $6}' | sort -u) || true)"
