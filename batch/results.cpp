@@ -25,7 +25,7 @@ json to_json(const FileResult& r) {
   return {{"file", r.file},         {"status", r.status},     {"seconds", r.seconds},
           {"vertices", r.vertices}, {"faces", r.faces},       {"peak_memory_mib", r.peak_memory_mib},
           {"filters", filters},     {"outputs", outputs},     {"warnings", r.warnings},
-          {"error", r.error},       {"shard", r.shard}};
+          {"error", r.error},       {"shard", r.shard},       {"record", r.record}};
 }
 
 FileResult from_json(const json& j) {
@@ -42,6 +42,7 @@ FileResult from_json(const json& j) {
   for (const auto& o : j.value("outputs", json::array()))
     r.outputs.push_back({o.value("layer", ""), o.value("file", ""), o.value("vertices", 0L), o.value("faces", 0L), o.value("edges", 0L)});
   r.warnings = j.value("warnings", std::vector<std::string>{});
+  r.record = j.value("record", std::vector<std::string>{});
   r.error = j.value("error", "");
   r.shard = j.value("shard", "");
   return r;
@@ -121,7 +122,7 @@ std::string status_counts(const std::vector<FileResult>& results) {
 }
 
 void write_summary(const std::string& base, const std::vector<FileResult>& results) {
-  std::string csv = "file,status,seconds,vertices,faces,filters,outputs,warnings,error\n";
+  std::string csv = "file,status,seconds,vertices,faces,filters,outputs,warnings,error,record\n";
   json records = json::array();
   std::map<std::string, long> counts;
   for (const char* status : kStatuses) counts[status] = 0;
@@ -133,7 +134,7 @@ void write_summary(const std::string& base, const std::vector<FileResult>& resul
     std::snprintf(seconds, sizeof seconds, "%.2f", r.seconds);
     csv += csv_field(r.file) + "," + r.status + "," + seconds + "," + std::to_string(r.vertices) + "," +
            std::to_string(r.faces) + "," + csv_field(joined(filters, "; ")) + "," + csv_field(joined(outputs, "; ")) + "," +
-           csv_field(joined(r.warnings, " | ")) + "," + csv_field(r.error) + "\n";
+           csv_field(joined(r.warnings, " | ")) + "," + csv_field(r.error) + "," + csv_field(joined(r.record, "; ")) + "\n";
     records.push_back(to_json(r));
     ++counts[r.status];
   }

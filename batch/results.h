@@ -33,6 +33,7 @@ struct FileResult {
   std::vector<FilterRun> filters;
   std::vector<LayerOutput> outputs;
   std::vector<std::string> warnings;  // the filters' log lines that warn
+  std::vector<std::string> record;    // "name=value": the measures filters log as "Record: a=1; b=2" (a sherd's rim diameter...)
   std::string error;
   std::string shard;  // "i/N"
 };
@@ -51,7 +52,7 @@ bool is_done(const std::string& output, const std::string& relative, bool retry_
 std::vector<FileResult> all_results(const std::string& output);
 
 /// <base>.csv (one line per file: file, status, seconds, vertices, faces, filters, outputs,
-/// warnings, error) and <base>.json (the records and the counts per status).
+/// warnings, error, record) and <base>.json (the records and the counts per status).
 void write_summary(const std::string& base, const std::vector<FileResult>& results);
 
 /// "12 ok, 1 failed, 0 crashed, 0 memory".

@@ -110,6 +110,8 @@ bool apply_step(MeshLabSession& ml, MeshDocument& doc, const Step& step, const W
   for (const QString& line : lines) {
     std::printf("  %s: %s\n", g_filter.c_str(), qUtf8Printable(line));
     if (line.contains("warning", Qt::CaseInsensitive)) result.warnings.push_back(g_filter + ": " + line.toStdString());
+    if (line.startsWith("Record: "))
+      for (const QString& item : line.mid(8).split("; ", Qt::SkipEmptyParts)) result.record.push_back(item.trimmed().toStdString());
   }
   std::fflush(stdout);
   if (!ok) result.error = g_filter + ": " + error;

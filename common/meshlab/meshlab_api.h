@@ -12,6 +12,7 @@ namespace reliefkit::ml {
 /// The plugin interface of this MeshLab (its FilterClass values name the filters' menus).
 using FilterInterface = MeshFilterInterface;
 using RichDirection = ::RichPoint3f;  // a direction parameter (MeshLab 2022.02: RichDirection)
+using RichPosition = ::RichPoint3f;   // a point parameter (MeshLab 2022.02: RichPosition)
 using RichOpenFile = ::RichOpenFile;   // file parameters (MeshLab 2025.07: RichFileOpen, RichFileSave)
 using RichSaveFile = ::RichSaveFile;
 using Point3Value = ::Point3fValue;    // the point value (MeshLab 2025.07: Point3Value)

@@ -14,6 +14,7 @@ namespace reliefkit::ml {
 /// The plugin interface of this MeshLab (its FilterClass values name the filters' menus).
 using FilterInterface = FilterPlugin;
 using RichDirection = ::RichDirection;  // a direction parameter (MeshLab 2020.09: RichPoint3f)
+using RichPosition = ::RichPosition;    // a point parameter (MeshLab 2020.09: RichPoint3f)
 // File parameters and the point value: renamed in MeshLab 2023.12 (the names in .mlx scripts,
 // "RichOpenFile" and "RichSaveFile", are the same in every release).
 #if RELIEFKIT_MESHLAB_API >= 2025

@@ -7,6 +7,8 @@
 //   rk_make_mesh base-figure CLASS SEED ft out.png (a base-library class drawn in front and top view)
 //   rk_make_mesh goblet-figure out.png           (the goblet of thesis fig. 7.8, front view)
 //   rk_make_mesh dome W H cell out.ply           (a smooth dome W x H, cell apart: a base for drawings)
+//   rk_make_mesh sherd jar|bowl|beaker SPAN FROM TO NOISE SEED out.ply
+//                                                (a vessel or sherd of known profile, random pose, mm; sherds.h)
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -19,12 +21,24 @@
 #include "drawings.h"
 #include "mesh_files.h"
 #include "shapes.h"
+#include "sherds.h"
 
 int main(int argc, char** argv) {
   std::string kind = argc > 1 ? argv[1] : "";
   try {
     if (kind == "convert" && argc == 4) {
       rktest::write_ply(argv[3], rktest::read_mesh(argv[2]).mesh);
+    } else if (kind == "sherd" && argc == 9) {
+      rktest::SherdOptions o;
+      const std::string shape = argv[2];
+      o.shape = shape == "bowl" ? rktest::VesselShape::bowl : shape == "beaker" ? rktest::VesselShape::beaker : rktest::VesselShape::jar;
+      o.span_deg = std::atof(argv[3]), o.from = std::atof(argv[4]), o.to = std::atof(argv[5]);
+      o.noise = std::atof(argv[6]), o.seed = unsigned(std::atol(argv[7])), o.irregular = true;
+      const rktest::Sherd sh = rktest::make_sherd(o);
+      rktest::write_ply(argv[8], sh.mesh);
+      std::printf("faces %d rim diameter %.4f axis point %.4f %.4f %.4f direction %.6f %.6f %.6f\n", sh.mesh.n_faces(),
+                  sh.rim_diameter, sh.axis_point.x(), sh.axis_point.y(), sh.axis_point.z(), sh.axis_direction.x(),
+                  sh.axis_direction.y(), sh.axis_direction.z());
     } else if (kind == "torus" && argc == 9) {
       auto m = rktest::torus(std::atof(argv[2]), std::atof(argv[3]), std::atoi(argv[4]), std::atoi(argv[5]),
                              std::atof(argv[6]), std::atoi(argv[7]));

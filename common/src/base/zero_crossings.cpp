@@ -175,6 +175,19 @@ std::vector<std::vector<int>> chain_segments(int n_points, const std::vector<std
 
 std::vector<std::vector<int>> Polylines::chains() const { return chain_segments(int(points.size()), segments); }
 
+Polylines plane_cut(const TriMesh& mesh, const Vec3& normal, double offset) {
+  const size_t n = mesh.vertices.size();
+  std::vector<double> distance(n);
+  for (size_t i = 0; i < n; ++i) distance[i] = mesh.vertices[i].dot(normal) - offset;
+  const std::vector<Vec3> same(n, normal);  // every vertex's direction, and its normal (unused: no face is inconsistent)
+  DirectionalFieldView field;
+  field.direction = same.data();
+  field.value = distance.data();
+  field.size = n;
+  field.value_along = [&distance](int v, const Vec3&) { return distance[size_t(v)]; };
+  return extract_zero_crossings(mesh, same, field);
+}
+
 DirectionalFieldView view_of(const DirectionalField& f) {
   DirectionalFieldView v;
   v.direction = f.direction.data();

@@ -13,21 +13,6 @@ constexpr double kGapMm = 8;  // between the drawing and its profile
 
 bool vertical(const PlateParams& p) { return p.section.axis == SectionAxis::vertical; }
 
-// The cut: zero crossings of the signed distance to the plane (a field the same in every
-// direction, so every face is consistent and no point is moved).
-Polylines cut(const TriMesh& mesh, const Vec3& normal, double offset) {
-  const size_t n = mesh.vertices.size();
-  std::vector<double> distance(n);
-  for (size_t i = 0; i < n; ++i) distance[i] = mesh.vertices[i].dot(normal) - offset;
-  const std::vector<Vec3> same(n, normal);  // every vertex's direction, and its normal (unused: no face is inconsistent)
-  DirectionalFieldView field;
-  field.direction = same.data();
-  field.value = distance.data();
-  field.size = n;
-  field.value_along = [&distance](int v, const Vec3&) { return distance[size_t(v)]; };
-  return extract_zero_crossings(mesh, same, field);
-}
-
 // A point of the cut on the page: depth across (front at the left) beside a vertical section's
 // drawing, depth down (front at the top) below a horizontal one's.
 Vec2 profile_point(const Vec3& p, const PageFrame& f, const PlateParams& params, const Vec2& origin) {
@@ -63,7 +48,7 @@ void add_section(Plate& plate, const TriMesh& mesh, const PageFrame& frame, cons
   const Vec3 normal = vertical(params) ? frame.right : frame.up;
   const double offset = vertical(params) ? frame.left + at * plate.drawing_size_mm.x() * per_mm
                                          : frame.top - at * plate.drawing_size_mm.y() * per_mm;
-  const Polylines profile = cut(mesh, normal, offset);
+  const Polylines profile = plane_cut(mesh, normal, offset);
   if (profile.segments.empty())
     throw InputError("The section's line misses the mesh: place it across the object (0.5 is through the middle).");
   const Vec2 origin = plate.drawing_origin_mm + (vertical(params) ? Vec2(plate.drawing_size_mm.x() + kGapMm, 0)

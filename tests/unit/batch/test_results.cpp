@@ -41,6 +41,7 @@ FileResult sample(const std::string& file, const std::string& status) {
   r.warnings = {"Demarcating Curves: Warning: 3 short pieces, \"dropped\""};
   r.error = status == "ok" ? "" : "it failed, badly";
   r.shard = "0/1";
+  if (status == "ok") r.record = {"rim_diameter=57.3", "eve=0.31"};
   return r;
 }
 }  // namespace
@@ -53,6 +54,7 @@ TEST(BatchResults, RecordsRoundTripAndDecideWhatIsDone) {
   ASSERT_TRUE(read_result(result_path(out, "a/coin.ply"), back));
   EXPECT_EQ(back.outputs.at(0).layer, "coin – demarcating curves");
   EXPECT_EQ(back.warnings.at(0), "Demarcating Curves: Warning: 3 short pieces, \"dropped\"");
+  EXPECT_EQ(back.record, std::vector<std::string>({"rim_diameter=57.3", "eve=0.31"}));
   EXPECT_DOUBLE_EQ(back.filters.at(0).seconds, 1.25);
   EXPECT_TRUE(is_done(out, "a/coin.ply", false));
   EXPECT_TRUE(is_done(out, "b/seal.ply", false));   // a crash is recorded: the run goes on past it
@@ -72,9 +74,9 @@ TEST(BatchResults, SummaryCsvQuotesAndMergeReadsEveryShard) {
   EXPECT_EQ(status_counts(all), "1 ok, 1 failed, 0 crashed, 0 memory");
   write_summary(out + "/summary", all);
   const std::string csv = read_text(out + "/summary.csv");
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "file,status,seconds,vertices,faces,filters,outputs,warnings,error");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "file,status,seconds,vertices,faces,filters,outputs,warnings,error,record");
   EXPECT_NE(csv.find("a/coin.ply,ok,1.50,10,16,Demarcating Curves,coin/curves.obj,"
-                     "\"Demarcating Curves: Warning: 3 short pieces, \"\"dropped\"\"\",\n"),
+                     "\"Demarcating Curves: Warning: 3 short pieces, \"\"dropped\"\"\",,rim_diameter=57.3; eve=0.31\n"),
             std::string::npos)
       << csv;
   EXPECT_NE(csv.find("b/seal.ply,failed,1.50,10,16,Demarcating Curves (failed),coin/curves.obj,"), std::string::npos);

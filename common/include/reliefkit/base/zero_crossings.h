@@ -79,6 +79,10 @@ std::vector<std::vector<int>> chain_segments(int n_points, const std::vector<std
 /// Throws InputError if the field's sizes do not match the mesh.
 Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& normals,
                                  const DirectionalFieldView& field, const ZeroCrossingOptions& options = {});
+
+/// The mesh cut by the plane {p : p · normal = offset} (the zero crossings of the signed distance
+/// to it: every face is consistent and no point is moved); `normal` unit.
+Polylines plane_cut(const TriMesh& mesh, const Vec3& normal, double offset);
 Polylines extract_zero_crossings(const TriMesh& mesh, const std::vector<Vec3>& normals,
                                  const DirectionalField& field, const ZeroCrossingOptions& options = {});
 
