@@ -19,14 +19,16 @@ const char* kInfo =
     "(radius, height) profile is thinnest. A piece that turns about no axis (a figurine, a flat tile, a sphere, "
     "which fits every axis) is refused with what was measured; give the axis then.<br><br>"
     "<b>Pose</b>: the mesh is moved rigidly (vertices in their order) so that the axis is +Z through the origin, the "
-    "piece's lowest point at z = 0 and its middle at +x. The rim is up: the log says what decided it (the base "
-    "reaching the axis, the smooth rim against a rough break, else the wider end); <i>Turn over</i> flips it.<br><br>"
+    "piece's lowest point at z = 0 and its middle at +x. The rim is up: the log says what decided it (a floor "
+    "across the axis, a smooth rim against a rough break, the scan's own up when its axis is near +y, else the wider "
+    "end); <i>Turn over</i> flips it.<br><br>"
     "<b>Output</b>: a new layer <i>&lt;mesh&gt; – profile</i>, the section through the axis at the piece's middle in "
     "the plane y = 0 (x = radius, z = height), vertex quality = the part (0 outer wall, 1 inner wall, 2 rim, 3 base, "
     "4 break); the mesh's vertex quality (and attribute <i>vessel_distance</i>) = each vertex's distance from the "
     "surface of revolution (+ outside the wall): handles, warping, decoration and repairs show with Colorize by "
     "vertex quality. The log gives the axis in the input's frame, the rim diameter with its uncertainty, the EVE, "
-    "the wall's thickness and the fit's residual, in the mesh's units.";
+    "the wall's thickness and the fit's residual, in the mesh's units, and a line <i>Record:</i> for tables "
+    "(reliefkit-batch puts it in its summary).";
 
 const QStringList kAxisModes = {"Fitted", "Given (point and direction below)"};
 

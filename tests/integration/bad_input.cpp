@@ -9,7 +9,7 @@
 
 namespace rktest {
 
-void expect_bad_input_handled(const FilterRun& run) {
+void expect_bad_input_handled(const FilterRun& run, const std::string& flat_refusal) {
   auto expect_message = [&](const std::string& name, const reliefkit::TriMesh& m, const std::string& text) {
     ServerRun r = run(name, m);
     EXPECT_FALSE(r.crashed) << name << ": " << r.output;
@@ -35,7 +35,9 @@ void expect_bad_input_handled(const FilterRun& run) {
   m.faces.push_back({7, m.n_vertices() - 1, 7});  // zero area
   m.vertices.push_back({9, 9, 9});                // isolated vertex
   expect_success("nonmanifold", m);
-  expect_success("flat", height_field([](double, double) { return 0.0; }, 1.0, 30, 0.3));
+  const reliefkit::TriMesh flat = height_field([](double, double) { return 0.0; }, 1.0, 30, 0.3);
+  if (flat_refusal.empty()) expect_success("flat", flat);
+  else expect_message("flat", flat, flat_refusal);
 }
 
 }  // namespace rktest

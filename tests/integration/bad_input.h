@@ -13,7 +13,9 @@ namespace rktest {
 
 using FilterRun = std::function<ServerRun(const std::string& name, const reliefkit::TriMesh& mesh)>;
 
-/// Runs all the cases with `run` and records gtest failures.
-void expect_bad_input_handled(const FilterRun& run);
+/// Runs all the cases with `run` and records gtest failures. `flat_refusal`: for a filter whose
+/// input must have a shape (a vessel's axis), the message the flat plane must be refused with,
+/// instead of a successful run.
+void expect_bad_input_handled(const FilterRun& run, const std::string& flat_refusal = "");
 
 }  // namespace rktest

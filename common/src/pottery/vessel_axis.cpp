@@ -510,6 +510,78 @@ double normal_spread_across(const std::vector<FaceSample>& samples, const std::v
   return mean + radius > 0 ? std::max(mean - radius, 0.0) / (mean + radius) : 0;
 }
 
+// Each start reweighted, then moved to the thinnest profile (`cell`: the first offset step).
+struct Tried {
+  Reweighting r;
+  std::vector<double> w;
+  double thickness = 0;
+  int iterations = 0;
+};
+std::vector<Tried> try_candidates(const std::vector<FaceSample>& samples, const VesselAxisParams& params, double cell) {
+  std::vector<double> area(samples.size());
+  for (size_t f = 0; f < samples.size(); ++f) area[f] = samples[f].area;
+  std::vector<Tried> tried;
+  for (const ComplexFit& start : candidate_starts(samples, fit_line_complex(normal_line_moments(samples, area)))) {
+    Tried t;
+    t.w.resize(samples.size());
+    t.r = reweight_from(samples, start, t.w, params, t.iterations);
+    const std::vector<Vec3> probe = outer_wall_points(samples, t.w, t.r.fit.direction, t.r.fit.point);
+    t.r.fit = thinnest_profile_axis(probe, t.r.fit, cell);
+    t.thickness = profile_thickness(probe, t.r.fit.direction, t.r.fit.point);
+    tried.push_back(std::move(t));
+  }
+  return tried;
+}
+
+// Only the axes whose normal lines agree about as tightly as the best's (robust spread of the
+// angles within 1.5 times the least) compete on the profile: an axis running beside or through a
+// small piece can fold its wall thinly too, but its normals agree only within 10 degrees where the
+// wall's own axis has 3. Two axes more than 10 degrees apart that fold the wall about as thinly
+// (within twice): the piece cannot tell them apart (a small sherd of a bulging wall is nearly a
+// piece of a torus), refused.
+const Tried& choose_axis(const std::vector<Tried>& tried) {
+  double tightest = std::numeric_limits<double>::infinity();
+  for (const Tried& t : tried) tightest = std::min(tightest, t.r.spread);
+  const Tried* chosen = nullptr;
+  for (const Tried& t : tried)
+    if (t.r.spread <= 1.5 * tightest && (!chosen || t.thickness < chosen->thickness)) chosen = &t;
+  for (const Tried& t : tried) {
+    const double cosine = std::abs(t.r.fit.direction.dot(chosen->r.fit.direction));
+    if (t.r.spread <= 1.5 * tightest && cosine < std::cos(10 / kDeg) && t.thickness < 2 * chosen->thickness) {
+      char what[300];
+      std::snprintf(what, sizeof what,
+                    "two axes fit this piece about equally well (%.0f degrees apart; the profile about the second is "
+                    "only %.1f times as thick): it is too small or too evenly curved to tell; give the axis, or scan "
+                    "a piece with rim or base",
+                    std::acos(std::min(1.0, cosine)) * kDeg, t.thickness / chosen->thickness);
+      throw InputError(what);
+    }
+  }
+  return *chosen;
+}
+
+// Every face (not only the fit's sample) weighed about the chosen axis with its cut-off; the
+// share of the area kept and the rms angle of the wall.
+void weigh_every_face(const std::vector<FaceSample>& all, const Reweighting& last, VesselAxisFit& fit) {
+  const ComplexFit& axis = last.fit;
+  double total = 0, kept = 0, angle_sum = 0, weight_sum = 0;
+  fit.face_weight.resize(all.size());
+  fit.face_normal.resize(all.size());
+  for (size_t f = 0; f < all.size(); ++f) {
+    const double a = all[f].area;
+    const double angle = off_axis_angle(all[f], axis.direction, axis.point);
+    fit.face_weight[f] = a > 0 ? tukey(angle / last.cutoff) : 0;
+    fit.face_normal[f] = all[f].n;
+    total += a;
+    if (fit.face_weight[f] > 0.5) kept += a;
+    angle_sum += a * fit.face_weight[f] * angle * angle;
+    weight_sum += a * fit.face_weight[f];
+  }
+  fit.wall_share = kept / total;
+  fit.rms_angle_deg = weight_sum > 0 ? std::sqrt(angle_sum / weight_sum) * kDeg : 90;
+  fit.cutoff_deg = last.cutoff * kDeg;
+}
+
 }  // namespace
 
 void VesselAxisParams::validate() const {
@@ -552,72 +624,16 @@ VesselAxisFit fit_vessel_axis(const Surface& surface, const VesselAxisParams& pa
   std::vector<FaceSample> samples;
   const size_t stride = (all.size() + kFitFaces - 1) / kFitFaces;
   for (size_t f = 0; f < all.size(); f += stride) samples.push_back(all[f]);
-  std::vector<double> weight(samples.size());
-  for (size_t f = 0; f < samples.size(); ++f) weight[f] = samples[f].area;
-  const double cell = 3 * surface.scale().edge / frame.scale;
+  const std::vector<Tried> tried = try_candidates(samples, params, 3 * surface.scale().edge / frame.scale);
+  const Tried& chosen = choose_axis(tried);
+  const ComplexFit& axis = chosen.r.fit;
   VesselAxisFit fit;
-  Reweighting last;
-  // Each start reweighted, then moved to the thinnest profile. Only the axes whose normal lines
-  // agree about as tightly as the best's (robust spread of the angles within 1.5 times the least)
-  // compete on the profile: an axis running beside or through a small piece can fold its wall thinly too, but
-  // its normals agree only within 10 degrees where the wall's own axis has 3.
-  struct Tried {
-    Reweighting r;
-    std::vector<double> w;
-    double thickness;
-    int iterations;
-  };
-  std::vector<Tried> tried;
-  for (const ComplexFit& start : candidate_starts(samples, fit_line_complex(normal_line_moments(samples, weight)))) {
-    Tried t;
-    t.w.resize(samples.size());
-    t.r = reweight_from(samples, start, t.w, params, t.iterations);
-    const std::vector<Vec3> probe = outer_wall_points(samples, t.w, t.r.fit.direction, t.r.fit.point);
-    t.r.fit = thinnest_profile_axis(probe, t.r.fit, cell);
-    t.thickness = profile_thickness(probe, t.r.fit.direction, t.r.fit.point);
-    tried.push_back(std::move(t));
-  }
-  double tightest = std::numeric_limits<double>::infinity();
-  for (const Tried& t : tried) tightest = std::min(tightest, t.r.spread);
-  const Tried* chosen = nullptr;
-  for (const Tried& t : tried)
-    if (t.r.spread <= 1.5 * tightest && (!chosen || t.thickness < chosen->thickness)) chosen = &t;
-  last = chosen->r, weight = chosen->w, fit.iterations = chosen->iterations;
-  // Two different axes that fold the wall about as thinly: the piece cannot tell them apart (a
-  // small sherd of a bulging wall is nearly a piece of a torus).
-  for (const Tried& t : tried) {
-    const double cosine = std::abs(t.r.fit.direction.dot(last.fit.direction));
-    if (t.r.spread <= 1.5 * tightest && cosine < std::cos(10 / kDeg) && t.thickness < 2 * chosen->thickness) {
-      char what[300];
-      std::snprintf(what, sizeof what,
-                    "two axes fit this piece about equally well (%.0f degrees apart; the profile about the second is "
-                    "only %.1f times as thick): it is too small or too evenly curved to tell; give the axis, or scan "
-                    "a piece with rim or base",
-                    std::acos(std::min(1.0, cosine)) * kDeg, t.thickness / chosen->thickness);
-      throw InputError(what);
-    }
-  }
-  const ComplexFit& axis = last.fit;
-  double total = 0, kept = 0, angle_sum = 0, weight_sum = 0;
-  fit.face_weight.resize(all.size());
-  fit.face_normal.resize(all.size());
-  for (size_t f = 0; f < all.size(); ++f) {
-    const double a = all[f].area;
-    const double angle = off_axis_angle(all[f], axis.direction, axis.point);
-    fit.face_weight[f] = a > 0 ? tukey(angle / last.cutoff) : 0;
-    fit.face_normal[f] = all[f].n;
-    total += a;
-    if (fit.face_weight[f] > 0.5) kept += a;
-    angle_sum += a * fit.face_weight[f] * angle * angle;
-    weight_sum += a * fit.face_weight[f];
-  }
-  fit.wall_share = kept / total;
-  fit.rms_angle_deg = weight_sum > 0 ? std::sqrt(angle_sum / weight_sum) * kDeg : 90;
-  fit.cutoff_deg = last.cutoff * kDeg;
+  fit.iterations = chosen.iterations;
+  weigh_every_face(all, chosen.r, fit);
   fit.direction_ambiguity = axis.eigenvalues[1] > 0 ? std::max(axis.eigenvalues[0], 0.0) / axis.eigenvalues[1] : 1;
-  fit.position_spread = normal_spread_across(samples, weight, axis.direction);
+  fit.position_spread = normal_spread_across(samples, chosen.w, axis.direction);
   check_determined(fit);
-  const Jackknife j = jackknife(samples, weight, axis);
+  const Jackknife j = jackknife(samples, chosen.w, axis);
   fit.angle_uncertainty_deg = j.angle * kDeg;
   fit.offset_uncertainty = j.offset * frame.scale;
   fit.axis.direction = axis.direction;

@@ -182,13 +182,75 @@ ProfilePart wall_side(const std::vector<Vec3>& normals) {
   return score > 0 ? ProfilePart::inner_wall : ProfilePart::outer_wall;
 }
 
-// The section at +x of the oriented piece, its runs labelled by part (a label is the majority of
-// the five around it, so a noisy face does not split a wall); two wall runs next to each other
-// (outer and inner meeting at a sharp lip) stay one run of the side most of it faces.
 struct Section {
   std::vector<ProfileCurve> curves;        // at x >= 0, in (radius, height)
   std::vector<std::vector<Vec2>> loops;    // the closed chains of the whole plane, (x, z): the wall's section filled
 };
+// A chain of the cut, segment by segment: its points in (x, z), each segment's label (label_of;
+// -1 on the other half of the plane) and its face's normal; labels made the majority of the five
+// around each.
+struct LabelledChain {
+  std::vector<Vec2> rz;
+  std::vector<int> label;
+  std::vector<Vec3> normal;
+};
+LabelledChain label_chain(const Polylines& cut, const std::vector<int>& chain, const std::vector<int>& segment_face,
+                          const std::vector<Vec3>& face_normal, const std::vector<char>& wall_face,
+                          const std::vector<signed char>& end_face, const Ends& ends) {
+  LabelledChain c;
+  for (size_t k = 0; k + 1 < chain.size(); ++k) {
+    const Vec3 a = cut.points[size_t(chain[k])], b = cut.points[size_t(chain[k + 1])];
+    c.rz.emplace_back(a.x(), a.z());
+    const int face = segment_face[k];
+    const bool other_half = a.x() < 0 || b.x() < 0;
+    c.label.push_back(other_half ? -1 : label_of(wall_face[size_t(face)], end_face[size_t(face)], ends));
+    c.normal.push_back(other_half ? Vec3::Zero() : face_normal[size_t(face)]);
+  }
+  if (!chain.empty()) c.rz.emplace_back(cut.points[size_t(chain.back())].x(), cut.points[size_t(chain.back())].z());
+  std::vector<int> smooth = c.label;
+  for (size_t k = 0; k < c.label.size(); ++k) {
+    if (c.label[k] < 0) continue;
+    int count[6] = {0, 0, 0, 0, 0, 0};
+    for (size_t j = k >= 2 ? k - 2 : 0; j < std::min(c.label.size(), k + 3); ++j)
+      if (c.label[j] >= 0) ++count[c.label[j]];
+    smooth[k] = int(std::max_element(count, count + 6) - count);
+  }
+  c.label = std::move(smooth);
+  return c;
+}
+
+// The chain's runs of one label as profile curves. A wall run over a lip too thin to face up
+// (outer wall, lip, inner wall in one) is cut at its highest point, each side told apart on its
+// own; slivers where the plane grazes a vertex (under a tenth of an edge) are left out.
+void append_runs(const LabelledChain& c, double edge, std::vector<ProfileCurve>& curves) {
+  for (size_t k = 0; k < c.label.size();) {
+    size_t end = k;
+    while (end < c.label.size() && c.label[end] == c.label[k]) ++end;
+    if (c.label[k] >= 0) {
+      std::vector<std::pair<size_t, size_t>> pieces{{k, end}};
+      if (c.label[k] == kWallLabel) {
+        size_t top = k;
+        for (size_t j = k; j <= end; ++j)
+          if (c.rz[j].y() > c.rz[top].y()) top = j;
+        if (top >= k + 3 && top + 3 <= end) pieces = {{k, top}, {top, end}};
+      }
+      for (const auto& [from, to] : pieces) {
+        ProfileCurve curve;
+        curve.part = c.label[k] == kWallLabel ? wall_side({c.normal.begin() + long(from), c.normal.begin() + long(to)})
+                                              : ProfilePart(c.label[k]);
+        curve.points.assign(c.rz.begin() + long(from), c.rz.begin() + long(to) + 1);
+        double length = 0;
+        for (size_t j = 1; j < curve.points.size(); ++j) length += (curve.points[j] - curve.points[j - 1]).norm();
+        if (length > 0.1 * edge) curves.push_back(std::move(curve));
+      }
+    }
+    k = end;
+  }
+}
+
+// The section at +x of the oriented piece, its runs labelled by part. Only the section's own
+// chains count: the longest, and any other at least a fifth as long (a handle's section); the
+// scraps where the plane grazes a jagged break are left out.
 Section section_profile(const TriMesh& oriented, const std::vector<Vec3>& face_normal, const std::vector<char>& wall_face,
                         const std::vector<signed char>& end_face, const Ends& ends, double edge) {
   Section section;
@@ -196,10 +258,7 @@ Section section_profile(const TriMesh& oriented, const std::vector<Vec3>& face_n
   std::unordered_map<long long, int> segment_of;  // (smaller point, larger point) -> segment
   auto key = [](int a, int b) { return (long long)std::min(a, b) << 32 | (long long)std::max(a, b); };
   for (size_t k = 0; k < cut.segments.size(); ++k) segment_of[key(cut.segments[k][0], cut.segments[k][1])] = int(k);
-  std::vector<ProfileCurve>& curves = section.curves;
-  // The section's own chains: the longest, and any other at least a fifth as long (a handle's
-  // section); the scraps where the plane grazes a jagged break are left out.
-  std::vector<std::vector<int>> chains = cut.chains();
+  const std::vector<std::vector<int>> chains = cut.chains();
   std::vector<double> length(chains.size(), 0);
   for (size_t c = 0; c < chains.size(); ++c)
     for (size_t k = 1; k < chains[c].size(); ++k) length[c] += (cut.points[size_t(chains[c][k])] - cut.points[size_t(chains[c][k - 1])]).norm();
@@ -211,58 +270,9 @@ Section section_profile(const TriMesh& oriented, const std::vector<Vec3>& face_n
       section.loops.emplace_back();
       for (int i : chain) section.loops.back().emplace_back(cut.points[size_t(i)].x(), cut.points[size_t(i)].z());
     }
-    std::vector<int> label;
-    std::vector<Vec2> rz;
-    std::vector<Vec3> normal;
-    for (size_t k = 0; k + 1 < chain.size(); ++k) {
-      const Vec3 a = cut.points[size_t(chain[k])], b = cut.points[size_t(chain[k + 1])];
-      if (a.x() < 0 || b.x() < 0) {  // the other half of the plane: a chain break
-        label.push_back(-1);
-        rz.emplace_back(a.x(), a.z());
-        normal.push_back(Vec3::Zero());
-        continue;
-      }
-      const int face = cut.segment_face[size_t(segment_of.at(key(chain[k], chain[k + 1])))];
-      label.push_back(label_of(wall_face[size_t(face)], end_face[size_t(face)], ends));
-      rz.emplace_back(a.x(), a.z());
-      normal.push_back(face_normal[size_t(face)]);
-    }
-    if (chain.size() > 0) {
-      const Vec3 last = cut.points[size_t(chain.back())];
-      rz.emplace_back(last.x(), last.z());
-    }
-    std::vector<int> smooth = label;
-    for (size_t k = 0; k < label.size(); ++k) {
-      if (label[k] < 0) continue;
-      int count[6] = {0, 0, 0, 0, 0, 0};
-      for (size_t j = k >= 2 ? k - 2 : 0; j < std::min(label.size(), k + 3); ++j)
-        if (label[j] >= 0) ++count[label[j]];
-      smooth[k] = int(std::max_element(count, count + 6) - count);
-    }
-    for (size_t k = 0; k < smooth.size();) {
-      size_t end = k;
-      while (end < smooth.size() && smooth[end] == smooth[k]) ++end;
-      if (smooth[k] >= 0) {
-        // A wall run over a lip too thin to face up (outer wall, lip, inner wall in one) is cut at
-        // its highest point, each side told apart on its own.
-        std::vector<std::pair<size_t, size_t>> pieces{{k, end}};
-        if (smooth[k] == kWallLabel) {
-          size_t top = k;
-          for (size_t j = k; j <= end; ++j)
-            if (rz[j].y() > rz[top].y()) top = j;
-          if (top >= k + 3 && top + 3 <= end) pieces = {{k, top}, {top, end}};
-        }
-        for (const auto& [from, to] : pieces) {
-          ProfileCurve c;
-          c.part = smooth[k] == kWallLabel ? wall_side({normal.begin() + long(from), normal.begin() + long(to)}) : ProfilePart(smooth[k]);
-          c.points.assign(rz.begin() + long(from), rz.begin() + long(to) + 1);
-          double length = 0;
-          for (size_t j = 1; j < c.points.size(); ++j) length += (c.points[j] - c.points[j - 1]).norm();
-          if (length > 0.1 * edge) curves.push_back(std::move(c));  // not the slivers where the plane grazes a vertex
-        }
-      }
-      k = end;
-    }
+    std::vector<int> segment_face;
+    for (size_t k = 0; k + 1 < chain.size(); ++k) segment_face.push_back(cut.segment_face[size_t(segment_of.at(key(chain[k], chain[k + 1])))]);
+    append_runs(label_chain(cut, chain, segment_face, face_normal, wall_face, end_face, ends), edge, section.curves);
   }
   return section;
 }
@@ -377,6 +387,10 @@ void measure_rim(VesselRecord& record, const std::vector<Vec3>& p, double edge) 
   if (outside - inside > 0.5 * edge && normal(0, 0) >= 6) {
     const Vec3 parabola = (normal + 1e-12 * normal.trace() * Mat3::Identity()).ldlt().solve(right);
     if (parabola[2] < 0) radius = std::clamp(inside - parabola[1] / (2 * parabola[2]), inside, outside);
+  }
+  if (radius < 2 * edge) {  // a top on the axis: a closed top (a lid's knob, a dome), no rim
+    record.has_rim = false;
+    return;
   }
   const double band = 2 * edge;
   record.rim_height = top;
@@ -584,7 +598,7 @@ std::vector<std::string> record_log_lines(const VesselRecord& r) {
     std::snprintf(text, sizeof text, "Rim diameter %.4g (uncertainty %.2g); preserved rim %.1f %% of the circumference (EVE %.2f).",
                   r.rim_diameter, r.diameter_uncertainty, 100 * r.rim_share, r.rim_share);
   } else {
-    std::snprintf(text, sizeof text, "No rim on the piece (its top is a break): no rim diameter or EVE.");
+    std::snprintf(text, sizeof text, "No rim on the piece (its top is a break, or closed over the axis): no rim diameter or EVE.");
   }
   lines.push_back(text);
   if (r.thickness_high > 0)
