@@ -1,6 +1,8 @@
 // ReliefKit — "Export Illustration Plate" (see plate_filter.h): the layers gathered, the plate laid
 // out by the core, written as SVG (the core) and PDF (Qt's QPdfWriter, the same page drawn).
 #include "plate_filter.h"
+#include <algorithm>
+#include <cmath>
 
 #include <QElapsedTimer>
 #include <QFile>
@@ -12,6 +14,7 @@
 #include "mesh_bridge.h"
 #include "params.h"
 #include "reliefkit/illustration/plate.h"
+#include "reliefkit/pottery/vessel_record.h"
 
 namespace reliefkit::ml {
 namespace {
@@ -29,7 +32,9 @@ const char* kPlateInfo =
     "from the top left. <b>Mesh unit</b>: how many millimetres one unit of the scan is (1 for scans "
     "in mm); the log gives the object's size at that unit — check it.";
 
-const QStringList kViews{"Facing the relief (its least extent)", "From +Z (MeshLab's default view)", "Given direction"};
+const QStringList kViews{"Facing the relief (its least extent)", "From +Z (MeshLab's default view)", "Given direction",
+                         "Pottery (a vessel or sherd on its axis: Vessel Axis and Profile first)"};
+constexpr int kPotteryView = 3;
 const QStringList kShadings{"Automatic (vertex colours if any, else light)", "Vertex colours", "Light from the top left",
                             "None (white paper)"};
 const QStringList kPages{"Fit the drawing", "A4 portrait", "A4 landscape"};
@@ -44,7 +49,11 @@ void plate_parameters(const MeshModel&, RichParameterList& par) {
   par.addParam(RichString("layers", "all", "Curve layers",
                           "\"all\": every layer of curves; or the names of the layers to draw, separated by ';'."));
   par.addParam(RichEnum("view", 0, kViews, "View", "Facing the relief: along its least extent, from the side its "
-                                                   "normals face (a coin, a plaque, a sherd's exterior)."));
+                                                   "normals face (a coin, a plaque, a sherd's exterior). Pottery: a "
+                                                   "vessel or sherd turned onto its axis by Vessel Axis and Profile, "
+                                                   "drawn in half-section (axis dash-dot, the section filled on the "
+                                                   "left, the exterior on the right, the rim line, the rim diameter "
+                                                   "and its preserved share; at 1:1 or reduced)."));
   par.addParam(RichDirection("direction", vcg::Point3f(0, 0, -1), "View direction (given)", "Looking along this direction."));
   par.addParam(RichFloat("unit_mm", 1.0f, "Mesh unit (mm)", "Millimetres per unit of the mesh: 1 for a scan in mm, 10 for cm, 25.4 for inches."));
   par.addParam(RichFloat("ratio", 0.0f, "Scale (drawn / real, 0: auto)",
@@ -133,6 +142,20 @@ PlateParams plate_params(FilterCall& call) {
   return p;
 }
 
+// The pottery convention: the piece as "Vessel Axis and Profile" left it (axis +Z, rim up), its
+// record made again as it lies; its own profile layer is not drawn on the exterior.
+Plate pottery_plate(FilterCall& call, View& view, const std::vector<double>& grey, std::vector<PlateCurves>& layers,
+                    const PlateParams& p) {
+  VesselRecordParams rp;
+  rp.as_oriented = true;
+  const VesselRecord record = record_vessel(surface_of(view), rp);
+  const std::string own_profile = derived_label(call.mesh(), "profile").toStdString();
+  layers.erase(std::remove_if(layers.begin(), layers.end(), [&](const PlateCurves& l) { return l.name == own_profile; }), layers.end());
+  for (const std::string& line : record_log_lines(record))
+    if (line.rfind("Rim", 0) == 0 || line.rfind("No rim", 0) == 0) call.log(QString::fromStdString("Pottery plate: " + line));
+  return make_pottery_plate(view.mesh, grey, layers, pottery_sheet(record), p);
+}
+
 PlateView plate_view(FilterCall& call, const View& view) {
   PlateView v;
   const int view_choice = read_enum(call, "view", "View", kViews.size());
@@ -182,9 +205,14 @@ void apply_plate(FilterCall& call) {
   p.progress = call.progress;
   const double width = read_float(call, "width", "Line width (mm)", 0.01, 10);
   p.section.width_mm = width * 0.5 / 0.35;  // the profile in the heavy pen
-  const std::vector<PlateCurves> layers = curve_layers(call, call.params.getString("layers"), width);
-  const Plate plate = make_plate(view.mesh, shading_of(call.mesh(), view, read_enum(call, "shading", "Shading", kShadings.size())),
-                                 layers, plate_view(call, view), p);
+  std::vector<PlateCurves> layers = curve_layers(call, call.params.getString("layers"), width);
+  const std::vector<double> grey = shading_of(call.mesh(), view, read_enum(call, "shading", "Shading", kShadings.size()));
+  Plate plate;
+  if (read_enum(call, "view", "View", kViews.size()) == kPotteryView) {
+    plate = pottery_plate(call, view, grey, layers, p);
+  } else {
+    plate = make_plate(view.mesh, grey, layers, plate_view(call, view), p);
+  }
   const QString svg = write_svg(call, plate);
   QString pdf;
   if (read_bool(call, "pdf", "Also as PDF")) write_pdf(plate, pdf = QFileInfo(svg).path() + "/" + QFileInfo(svg).completeBaseName() + ".pdf");
@@ -232,6 +260,13 @@ void write_pdf(const Plate& plate, const QString& path) {
   painter.setFont(font);
   painter.drawText(QRectF(x - 10, y + 1, len + 20, 5), Qt::AlignHCenter | Qt::AlignTop, QString::fromStdString(plate.bar_label));
   painter.drawText(QRectF(x + len + 4, y - 2.5, 40, 5), Qt::AlignLeft | Qt::AlignVCenter, QString::fromStdString(plate.scale_label));
+  for (const PlateText& t : plate.texts) {
+    QFont text_font("DejaVu Sans");
+    text_font.setPixelSize(int(std::lround(t.size_mm)));
+    painter.setFont(text_font);
+    painter.drawText(QRectF(t.at.x() - 60, t.at.y() - 1.3 * t.size_mm, 120, 1.3 * t.size_mm), Qt::AlignHCenter | Qt::AlignBottom,
+                     QString::fromStdString(t.text));
+  }
   painter.end();
 }
 }  // namespace

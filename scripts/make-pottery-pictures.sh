@@ -4,7 +4,8 @@
 # pose: rk_make_mesh sherd) as scanned | turned onto its axis with its profile layer (from the
 # side) | coloured by its distance from the surface of revolution. Then the filter in the GUI:
 # found by the Filters search, its dialog, Apply, the log.
-# Output: docs/img/pottery_sherd.png, docs/img/gui_pottery_dialog.png, docs/img/gui_pottery_applied.png
+# Output: docs/img/pottery_sherd.png, docs/img/gui_pottery_dialog.png, docs/img/gui_pottery_applied.png,
+# docs/img/pottery_plates.png
 # (working files in build/pottery-pictures).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -70,3 +71,12 @@ EOF
 convert "$out/gui_dialog.png" -crop 600x600+0+0 +repage "$here/docs/img/gui_pottery_dialog.png"
 convert "$out/gui_applied.png" -resize 75% "$here/docs/img/gui_pottery_applied.png"
 echo "pictures written to $here/docs/img: pottery_sherd.png, gui_pottery_dialog.png, gui_pottery_applied.png"
+# The pottery plate of the same sherd, and of a whole jar (examples/pottery.mlx).
+"$here/build/tests/rk_make_mesh" sherd jar 360 0 1 0.05 2 "$out/jar.ply" >/dev/null
+for piece in sherd jar; do
+  (cd "$out" && "$here/scripts/meshlabserver" -i "$out/$piece.ply" -s "$here/examples/pottery.mlx" >"$out/${piece}_plate.log" 2>&1)
+  grep -o "Illustration plate: [^;]*" "$out/${piece}_plate.log" | head -1
+  rsvg-convert -w 700 -b white "$out/$piece-plate.svg" -o "$out/${piece}_plate.png"
+done
+convert "$out/sherd_plate.png" "$out/jar_plate.png" -gravity center +append "$here/docs/img/pottery_plates.png"
+echo "and docs/img/pottery_plates.png"

@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "plate_raster.h"
@@ -23,7 +24,7 @@ void check_params(const PlateParams& p, const std::vector<PlateCurves>& layers) 
   if (!(p.section.at >= 0 && p.section.at <= 1)) throw InputError("The section's place must be a fraction between 0 and 1.");
   long segments = 0;
   for (const auto& l : layers) segments += long(l.segments.size());
-  if (segments == 0)
+  if (segments == 0 && p.curves_required)
     throw InputError("There is no curve to draw: choose a curve layer (Demarcating Curves, Relief Edges, Ridges and "
                      "Valleys...) that holds curves, or run one of those filters first.");
 }
@@ -44,22 +45,7 @@ Vec2 content_mm(const PageFrame& frame, const PlateParams& p) { return frame.dra
 // The standard scale of archaeological drawing (drawn : real), the largest at which the content
 // fits the page — A4, portrait or landscape, when the page fits the drawing.
 double automatic_ratio(const PageFrame& real, const PlateParams& p) {
-  static const double kScales[] = {1000, 500, 200, 100, 50, 20, 10, 5, 4, 3, 2, 1, 1 / 2., 1 / 3., 1 / 4., 1 / 5., 1 / 10., 1 / 20., 1 / 50.,
-                                   1 / 100., 1 / 200., 1 / 500., 1 / 1000.};
-  std::vector<Vec2> pages{Vec2(p.page_width_mm, p.page_height_mm)};
-  if (p.page_width_mm <= 0 || p.page_height_mm <= 0) pages = {Vec2(210, 297), Vec2(297, 210)};
-  for (const Vec2& page : pages)
-    if (page.x() <= 2 * p.margin_mm || page.y() <= 2 * p.margin_mm + kBarRoom)
-      throw InputError("The page is too small for its margins and the scale bar.");
-  for (double ratio : kScales)
-    for (const Vec2& page : pages) {
-      const Vec2 room = page - Vec2(2 * p.margin_mm, 2 * p.margin_mm + kBarRoom), need = content_mm(at_ratio(real, ratio), p);
-      if (need.x() <= room.x() && need.y() <= room.y()) return ratio;
-    }
-  char msg[300];
-  std::snprintf(msg, sizeof msg, "The object is %.0f x %.0f mm at the mesh unit given (%g mm): too large for the page even at "
-                "1:1000. Check the mesh unit.", real.drawing_mm.x(), real.drawing_mm.y(), p.unit_mm);
-  throw InputError(msg);
+  return standard_ratio([&](double ratio) { return content_mm(at_ratio(real, ratio), p); }, p);
 }
 
 // The page: the content at its scale, the margins, the scale bar's room below; a fixed page when asked.
@@ -97,8 +83,8 @@ void add_scale_bar(Plate& plate, double content_height_mm) {
   plate.scale_label = text;
 }
 // A plate without lines is no plate: say why.
-void check_drawn(const Plate& plate) {
-  if (plate.visible_segments > 0) return;
+void check_drawn(const Plate& plate, const PlateParams& p) {
+  if (plate.visible_segments > 0 || (!p.curves_required && plate.hidden_segments == 0)) return;
   if (plate.hidden_segments == 0)
     throw InputError("The curves lie off the mesh's drawing: they are not this mesh's curves. Make the mesh they were "
                      "found on current, or name its curve layers.");
@@ -106,6 +92,25 @@ void check_drawn(const Plate& plate) {
                    "the direction the curves are seen from).");
 }
 }  // namespace
+
+double standard_ratio(const std::function<Vec2(double)>& content_at, const PlateParams& p) {
+  static const double kScales[] = {1000, 500, 200, 100, 50, 20, 10, 5, 4, 3, 2, 1, 1 / 2., 1 / 3., 1 / 4., 1 / 5., 1 / 10., 1 / 20., 1 / 50.,
+                                   1 / 100., 1 / 200., 1 / 500., 1 / 1000.};
+  std::vector<Vec2> pages{Vec2(p.page_width_mm, p.page_height_mm)};
+  if (p.page_width_mm <= 0 || p.page_height_mm <= 0) pages = {Vec2(210, 297), Vec2(297, 210)};
+  for (const Vec2& page : pages)
+    if (page.x() <= 2 * p.margin_mm || page.y() <= 2 * p.margin_mm + kBarRoom)
+      throw InputError("The page is too small for its margins and the scale bar.");
+  for (double ratio : kScales)
+    for (const Vec2& page : pages) {
+      const Vec2 room = page - Vec2(2 * p.margin_mm, 2 * p.margin_mm + kBarRoom), need = content_at(ratio);
+      if (need.x() <= room.x() && need.y() <= room.y()) return ratio;
+    }
+  char msg[300];
+  std::snprintf(msg, sizeof msg, "The object is %.0f x %.0f mm at the mesh unit given (%g mm): too large for the page even at "
+                "1:1000. Check the mesh unit.", content_at(1).x(), content_at(1).y(), p.unit_mm);
+  throw InputError(msg);
+}
 
 PlateView facing_view(const TriMesh& mesh) {
   if (mesh.vertices.empty()) throw InputError("The mesh is empty: there is nothing to draw.");
@@ -145,7 +150,7 @@ Plate make_plate(const TriMesh& mesh, const std::vector<double>& grey, const std
   plate.shading = raster.grey;
   if (params.progress) params.progress(50, "Plate: hidden lines");
   for (size_t k = 0; k < layers.size(); ++k) add_visible_paths(plate, layers[k], int(k), frame, raster, params);
-  check_drawn(plate);
+  check_drawn(plate, params);
   for (auto& path : plate.paths)
     for (auto& q : path.points) q += plate.drawing_origin_mm;
   if (params.progress) params.progress(80, "Plate: the section");

@@ -2,6 +2,7 @@
 // common/src/illustration; see reliefkit/illustration/plate.h).
 #pragma once
 
+#include <functional>
 #include <opencv2/core.hpp>
 
 #include "reliefkit/illustration/plate.h"
@@ -39,6 +40,11 @@ DepthRaster rasterize(const TriMesh& mesh, const std::vector<double>& grey, cons
 /// (millimetres from the drawing's top-left); the segments counted visible or hidden.
 void add_visible_paths(Plate& plate, const PlateCurves& layer, int layer_index, const PageFrame& frame,
                        const DepthRaster& raster, const PlateParams& params);
+
+/// The largest standard scale (drawn : real) at which the content (its size in mm at a ratio)
+/// fits the page with its margins and scale bar (A4, portrait or landscape, when the page fits the
+/// drawing). Throws InputError when it fits at none down to 1:1000.
+double standard_ratio(const std::function<Vec2(double)>& content_at, const PlateParams& params);
 
 /// The room the section's profile takes beside the drawing (to the right, or below), in mm at
 /// the frame's scale; zero without a section.

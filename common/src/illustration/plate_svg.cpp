@@ -65,6 +65,11 @@ void write_scale_bar(std::ostringstream& svg, const Plate& p) {
       << " <text x=\"" << x + len + 4 << "\" y=\"" << y + 1.1
       << "\" font-family=\"DejaVu Sans, sans-serif\" font-size=\"3\">" << escaped(p.scale_label) << "</text>\n";
 }
+void write_texts(std::ostringstream& svg, const Plate& p) {
+  for (const PlateText& t : p.texts)
+    svg << " <text x=\"" << t.at.x() << "\" y=\"" << t.at.y() << "\" font-family=\"DejaVu Sans, sans-serif\" font-size=\""
+        << t.size_mm << "\" text-anchor=\"middle\">" << escaped(t.text) << "</text>\n";
+}
 }  // namespace
 
 std::string plate_svg(const Plate& p) {
@@ -77,6 +82,7 @@ std::string plate_svg(const Plate& p) {
       << " <rect x=\"0\" y=\"0\" width=\"" << p.width_mm << "\" height=\"" << p.height_mm << "\" fill=\"white\"/>\n";
   write_shading(svg, p);
   write_paths(svg, p);
+  write_texts(svg, p);
   write_scale_bar(svg, p);
   svg << "</svg>\n";
   return svg.str();

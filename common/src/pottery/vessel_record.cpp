@@ -469,7 +469,8 @@ std::vector<char> wall_faces(const Surface& surface, VesselRecord& record, std::
 // The pose: the axis onto +Z through the origin, up decided (and flipped if asked), the middle
 // meridian at +x, the lowest point at z = 0.
 void orient(VesselRecord& record, const Surface& surface, const std::vector<Vec3>& face_normal, const std::vector<char>& wall,
-            bool flip_asked, std::vector<signed char>& end_face) {
+            const VesselRecordParams& params, std::vector<signed char>& end_face) {
+  const bool flip_asked = params.flip;
   const TriMesh& mesh = surface.mesh();
   const double edge = surface.scale().edge;
   const std::vector<Vec3> fine_normal = smoothed_face_normals(surface, 1.0);
@@ -480,14 +481,16 @@ void orient(VesselRecord& record, const Surface& surface, const std::vector<Vec3
   std::vector<Vec3> turned_normal(face_normal.size()), turned_fine(face_normal.size());
   for (size_t f = 0; f < face_normal.size(); ++f) turned_normal[f] = rotation * face_normal[f], turned_fine[f] = rotation * fine_normal[f];
   const EndRoughness ends = end_roughness(mesh, turned, turned_fine, turned_normal, wall, edge);
-  const bool turn = decide_up(mesh, turned, ends, rotation * Vec3::UnitY(), record) != flip_asked;
+  const bool turn = params.as_oriented ? false : decide_up(mesh, turned, ends, rotation * Vec3::UnitY(), record) != flip_asked;
+  if (params.as_oriented) record.up_reason = "as the piece lies (oriented before: +Z up)";
   end_face.resize(ends.end.size());
   for (size_t f = 0; f < ends.end.size(); ++f) end_face[f] = turn ? -ends.end[f] : ends.end[f];
   record.top_roughness = turn ? ends.bottom : ends.top, record.bottom_roughness = turn ? ends.top : ends.bottom;
   record.wall_roughness = ends.wall;
   record.top_is_rim = ends.smooth(turn ? ends.bottom : ends.top);
   record.bottom_is_base = ends.smooth(turn ? ends.top : ends.bottom) || record.up_rule == UpRule::base;
-  record.flipped = flip_asked;
+  record.flipped = flip_asked && !params.as_oriented;
+  if (params.as_oriented) return;  // the identity: the axis +Z through the origin, as given
   if (turn) rotation = Vec3(1, -1, -1).asDiagonal() * rotation, translation = Vec3(1, -1, -1).asDiagonal() * translation;
   std::vector<Vec3> p = moved(mesh.vertices, rotation, translation);
   const Mat3 spin = Eigen::AngleAxisd(-middle_meridian(mesh, p), Vec3::UnitZ()).toRotationMatrix();
@@ -525,7 +528,9 @@ VesselRecord record_vessel(const Surface& surface, const VesselRecordParams& par
   auto report = [&](int percent, const char* what) { return !params.progress || params.progress(percent, what); };
   VesselRecord record;
   report(5, "Fitting the axis");
-  if (params.given_axis) {
+  if (params.as_oriented) {
+    record.axis = AxisLine{Vec3::Zero(), Vec3::UnitZ()};
+  } else if (params.given_axis) {
     record.axis = *params.given_axis;
     record.axis.direction.normalize();
   } else {
@@ -536,7 +541,7 @@ VesselRecord record_vessel(const Surface& surface, const VesselRecordParams& par
   std::vector<Vec3> face_normal;
   const std::vector<char> wall = wall_faces(surface, record, face_normal, params);
   std::vector<signed char> end_face;
-  orient(record, surface, face_normal, wall, params.flip, end_face);
+  orient(record, surface, face_normal, wall, params, end_face);
   const TriMesh oriented = oriented_mesh(mesh, record);
   for (Vec3& n : face_normal) n = record.rotation * n;
   report(75, "Cutting the profile");
@@ -545,6 +550,7 @@ VesselRecord record_vessel(const Surface& surface, const VesselRecordParams& par
   ends.base = record.bottom_is_base;
   const Section section = section_profile(oriented, face_normal, wall, end_face, ends, edge);
   record.profile = section.curves;
+  record.section_loops = section.loops;
   if (record.profile.empty())
     throw InputError("The plane through the axis and the piece's middle misses the piece: the axis runs outside what "
                      "this surface could turn about (a given axis far from the piece?)");
@@ -576,6 +582,36 @@ VesselRecord record_vessel(const Surface& surface, const VesselRecordParams& par
   }
   report(100, "Done");
   return record;
+}
+
+namespace {
+// The polygon's part at x >= 0 (Sutherland-Hodgman against the axis), closed along it.
+std::vector<Vec2> right_half(const std::vector<Vec2>& loop) {
+  std::vector<Vec2> out;
+  for (size_t k = 0; k + 1 < loop.size(); ++k) {
+    const Vec2 &a = loop[k], &b = loop[k + 1];
+    if (a.x() >= 0) out.push_back(a);
+    if ((a.x() >= 0) != (b.x() >= 0)) {
+      const double t = a.x() / (a.x() - b.x());
+      out.push_back(Vec2(0, a.y() + t * (b.y() - a.y())));
+    }
+  }
+  if (out.size() >= 3) out.push_back(out.front());
+  return out.size() >= 4 ? out : std::vector<Vec2>{};
+}
+}  // namespace
+
+PotterySheet pottery_sheet(const VesselRecord& r) {
+  PotterySheet sheet;
+  for (const auto& loop : r.section_loops) {
+    std::vector<Vec2> half = right_half(loop);
+    if (!half.empty()) sheet.section.push_back(std::move(half));
+  }
+  if (sheet.section.empty())
+    for (const ProfileCurve& c : r.profile) sheet.lines.push_back(c.points);
+  sheet.has_rim = r.has_rim;
+  sheet.rim_height = r.rim_height, sheet.rim_radius = r.rim_diameter / 2, sheet.rim_share = r.rim_share;
+  return sheet;
 }
 
 std::vector<std::string> record_log_lines(const VesselRecord& r) {

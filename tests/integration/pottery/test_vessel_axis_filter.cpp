@@ -5,6 +5,8 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <regex>
 
 #include "bad_input.h"
@@ -95,4 +97,21 @@ TEST(VesselAxisFilter, BadInputAndShapesThatTurnAboutNoAxis) {
   EXPECT_FALSE(sphere_run.crashed);
   EXPECT_NE(sphere_run.status, 0);
   EXPECT_NE(sphere_run.output.find("fit"), std::string::npos) << sphere_run.output;
+}
+
+TEST(VesselAxisFilter, ThePotteryExampleWritesTheSherdsPlate) {
+  std::string dir;
+  const ServerRun run = run_filters("pottery_plate", rim_sherd().mesh, {}, {"-o", "out.ply"}, &dir);
+  ASSERT_EQ(run.status, 0) << run.output;  // the sherd written as in.ply; now the example script on it
+  const ServerRun plate = run_meshlabserver({"-i", dir + "/in.ply", "-s", source_dir() + "/examples/pottery.mlx"});
+  ASSERT_EQ(plate.status, 0) << plate.output;
+  EXPECT_NE(plate.output.find("Pottery plate: Rim diameter"), std::string::npos) << plate.output;
+  EXPECT_NE(plate.output.find("at 1:1 (automatic)"), std::string::npos) << plate.output;
+  std::ifstream svg(dir + "/in-plate.svg");
+  const std::string text((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("<g id=\"section\""), std::string::npos);
+  EXPECT_NE(text.find("fill=\"black"), std::string::npos);     // the section filled
+  EXPECT_NE(text.find("stroke-dasharray"), std::string::npos);  // the axis dash-dot
+  EXPECT_NE(text.find("57 mm, 31 %"), std::string::npos) << text.substr(0, 400);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/in-plate.pdf"));
 }

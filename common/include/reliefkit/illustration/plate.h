@@ -64,6 +64,7 @@ struct PlateParams {
   double simplify_px = 0.25;  // polylines simplified within this many raster pixels
   LineWeights weights = LineWeights::by_strength;
   PlateSection section;
+  bool curves_required = true;  // false: a plate of the shading alone is allowed (a plain sherd's pottery plate)
   Progress progress = nullptr;
 };
 
@@ -76,8 +77,16 @@ struct PlatePath {
   bool filled = false;    // a closed profile of the section, filled black (the pottery convention)
 };
 
+/// A line of text on the page (millimetres, y down; the baseline's middle).
+struct PlateText {
+  Vec2 at{0, 0};
+  std::string text;
+  double size_mm = 3;
+};
+
 struct Plate {
   double width_mm = 0, height_mm = 0;
+  std::vector<PlateText> texts;  // the pottery plate's rim diameter and share
   Vec2 drawing_origin_mm{0, 0};  // top-left of the drawing (and of the shading raster)
   Vec2 drawing_size_mm{0, 0};
   cv::Mat shading;               // 8-bit grey at params.dpi, 255 where there is no surface (paper)
@@ -99,6 +108,23 @@ struct Plate {
 /// that are all hidden or all off the mesh's drawing, or parameters out of range.
 Plate make_plate(const TriMesh& mesh, const std::vector<double>& grey, const std::vector<PlateCurves>& layers,
                  const PlateView& view, const PlateParams& params);
+
+/// The pottery convention (issue 42) for a piece oriented by "Vessel Axis and Profile" (axis +Z
+/// through the origin, the piece's middle towards +x, rim up): the axis a vertical dash-dot line;
+/// left of it the section (its closed loops mirrored, filled black); right of it the exterior
+/// seen from the front — the right half of a vessel kept whole enough (half of the rim or more),
+/// a sherd whole beside the axis — with the curve layers on it; the rim line across both; the rim
+/// diameter and the preserved share written above it. The scale as make_plate chooses it (the
+/// standard scales 1:1, 1:2, 1:3, 1:4 ... at which the whole fits A4), counting the section's width.
+struct PotterySheet {
+  std::vector<std::vector<Vec2>> section;  // (radius, height) closed loops: the wall's section
+  std::vector<std::vector<Vec2>> lines;    // (radius, height) open parts of the profile (no loop)
+  bool has_rim = false;
+  double rim_height = 0, rim_radius = 0;   // mesh units
+  double rim_share = 0;                    // 0..1
+};
+Plate make_pottery_plate(const TriMesh& oriented, const std::vector<double>& grey, const std::vector<PlateCurves>& layers,
+                         const PotterySheet& sheet, const PlateParams& params);
 
 /// The plate as an SVG document (millimetre units; the shading embedded as a PNG).
 std::string plate_svg(const Plate& plate);

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "reliefkit/illustration/plate.h"
 #include "reliefkit/pottery/vessel_axis.h"
 
 namespace reliefkit {
@@ -42,6 +43,7 @@ struct VesselRecordParams {
   VesselAxisParams fit;
   std::optional<AxisLine> given_axis;  // the axis as given (the input's frame) instead of fitting one
   bool flip = false;                   // turn the piece over after "up" was decided
+  bool as_oriented = false;            // the piece lies on its axis already (+Z through the origin, rim up): kept as it lies
   Progress progress = nullptr;
   void validate() const;  // throws InputError
 };
@@ -57,6 +59,7 @@ struct VesselRecord {
   Vec3 translation = Vec3::Zero();   // the origin, the piece's lowest point at z = 0, its middle meridian at +x
   std::optional<VesselAxisFit> fit;  // when the axis was fitted
   std::vector<ProfileCurve> profile;
+  std::vector<std::vector<Vec2>> section_loops;  // the section's closed chains in the plane y = 0, (x, z), x of either sign
   bool has_rim = false, has_base = false;
   double rim_diameter = 0;           // mesh units (0 without a rim)
   double rim_share = 0;              // preserved share of the rim's circumference, 0..1 (EVE)
@@ -74,6 +77,10 @@ VesselRecord record_vessel(const Surface& surface, const VesselRecordParams& par
 
 /// The mesh moved rigidly as the record says (vertices and faces in their order).
 TriMesh oriented_mesh(const TriMesh& mesh, const VesselRecord& record);
+
+/// What the pottery plate draws of the record: the section's loops cut at the axis (the half at
+/// x >= 0, closed along the axis), the profile's runs as lines when the section has no loop, the rim.
+PotterySheet pottery_sheet(const VesselRecord& record);
 
 /// The record for a log, line by line (units: the mesh's).
 std::vector<std::string> record_log_lines(const VesselRecord& record);
