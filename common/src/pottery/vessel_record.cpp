@@ -630,6 +630,10 @@ std::vector<std::string> record_log_lines(const VesselRecord& r) {
     lines.push_back(text);
   }
   lines.push_back("Up: " + r.up_reason + (r.flipped ? "; then turned over, as asked (Flip)." : "."));
+  if (r.has_rim && (r.up_rule == UpRule::input_up || r.up_rule == UpRule::wider_end))
+    lines.push_back("Warning: the piece does not show which end is its rim (no floor, and both ends as smooth or as rough as "
+                    "each other): the rim measured is the top end as the piece now lies. Check it; if the rim is at the "
+                    "bottom, run again with Turn over.");
   if (r.has_rim) {
     std::snprintf(text, sizeof text, "Rim diameter %.4g (uncertainty %.2g); preserved rim %.1f %% of the circumference (EVE %.2f).",
                   r.rim_diameter, r.diameter_uncertainty, 100 * r.rim_share, r.rim_share);
