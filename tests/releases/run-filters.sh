@@ -28,4 +28,7 @@ run vessel_from_profile_drawing profile png "Vessel from Profile Drawing" --para
 # The illustration plate (files, not layers): the example script — Demarcating Curves, Prominent
 # Coloring, Export Illustration Plate (its SVG in each file's outputs folder).
 run illustration_plate mesh ply --script "$(dirname "${BASH_SOURCE[0]}")/../../examples/illustration_plate.mlx"
+# Pottery: a synthetic rim sherd turned onto its axis; the example script adds its pottery plate.
+run vessel_axis_and_profile sherd ply "Vessel Axis and Profile"
+run pottery_plate sherd ply --script "$(dirname "${BASH_SOURCE[0]}")/../../examples/pottery.mlx"
 exit $status

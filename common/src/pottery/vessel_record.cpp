@@ -285,6 +285,17 @@ struct Raster {
   cv::Point at(const Vec2& q) const { return cv::Point(int(std::lround((q.x() - x0) / pixel)), int(std::lround((q.y() - z0) / pixel))); }
 };
 
+// Whether q lies inside the closed loops (even-odd: a ray along +x crosses them an odd number of times).
+bool inside_loops(const Vec2& q, const std::vector<std::vector<Vec2>>& loops) {
+  bool in = false;
+  for (const auto& loop : loops)
+    for (size_t k = 0; k + 1 < loop.size(); ++k) {
+      const Vec2 &a = loop[k], &b = loop[k + 1];
+      if ((a.y() > q.y()) != (b.y() > q.y()) && q.x() < a.x() + (q.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y())) in = !in;
+    }
+  return in;
+}
+
 // Per vertex, its (radius, height)'s distance from the profile (the surface of revolution it
 // sweeps), negative inside the wall's section.
 std::vector<double> distances_from_profile(const std::vector<Vec3>& p, const Section& section, double edge) {
@@ -315,7 +326,11 @@ std::vector<double> distances_from_profile(const std::vector<Vec3>& p, const Sec
     const double ax = std::clamp(fx - x, 0.0, 1.0), az = std::clamp(fz - z, 0.0, 1.0);
     const double d = (1 - az) * ((1 - ax) * distance.at<float>(z, x) + ax * distance.at<float>(z, x + 1)) +
                      az * ((1 - ax) * distance.at<float>(z + 1, x) + ax * distance.at<float>(z + 1, x + 1));
-    const bool in = inside.at<uchar>(std::clamp(int(std::lround(fz)), 0, r.height - 1), std::clamp(int(std::lround(fx)), 0, r.width - 1));
+    // Inside the wall's section: the raster's fill where the vertex is clearly in or out; the exact
+    // test near the outline (the fill's pixels would flip with the last digits of the axis).
+    const Vec2 q(p[size_t(i)].head<2>().norm(), p[size_t(i)].z());
+    const bool in = d > 3 ? inside.at<uchar>(std::clamp(int(std::lround(fz)), 0, r.height - 1), std::clamp(int(std::lround(fx)), 0, r.width - 1)) != 0
+                          : inside_loops(q, section.loops);
     out[size_t(i)] = (in ? -1 : 1) * d * r.pixel;
   }
   return out;
