@@ -2,7 +2,7 @@
 // known axis and profile (tests/support/sherds.h): per case and seed, the time and the errors (axis
 // angle, axis offset and profile as shares of the largest radius, rim diameter), the uncertainty
 // the record states, and what "up" was decided from; then the time at about 1 M faces.
-//   build/bench/bench_pottery [--seeds N] [--size-only]
+//   build/bench/bench_pottery [--seeds N] [--size-only] [--case TEXT]   (--case: only the cases whose name holds TEXT)
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -52,8 +52,10 @@ void run(const Case& c, unsigned seed) {
 int main(int argc, char** argv) {
   int seeds = 3;
   bool size_only = false;
+  const char* only = "";
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--seeds") && i + 1 < argc) seeds = std::atoi(argv[++i]);
+    if (!std::strcmp(argv[i], "--case") && i + 1 < argc) only = argv[++i];
     if (!std::strcmp(argv[i], "--size-only")) size_only = true;
   }
   const Case cases[] = {
@@ -65,18 +67,26 @@ int main(int argc, char** argv) {
       {"jar rim sherd 10%", sherd(VesselShape::jar, 36, 0.75, 1, 0.1, true)},
       {"bowl base sherd 25%", sherd(VesselShape::bowl, 90, 0, 0.5, 0.1, true)},
       {"jar body sherd 25 deg", sherd(VesselShape::jar, 25, 0.55, 0.8, 0.1, true)},
+      {"beaker body sherd 25 deg", sherd(VesselShape::beaker, 25, 0.35, 0.65, 0.1, true)},
   };
   if (!size_only) {
     std::printf("%-26s %s %8s %6s  %s\n", "case", "seed", "faces", "s", "angle deg (stated)  offset  profile median / p90  rim diameter (stated)  up");
     for (const Case& c : cases)
-      for (unsigned seed = 1; seed <= unsigned(seeds); ++seed) run(c, seed);
+      if (std::strstr(c.name, only))
+        for (unsigned seed = 1; seed <= unsigned(seeds); ++seed) run(c, seed);
     SherdOptions special = sherd(VesselShape::jar, 108, 0.4, 1, 0.1, true);
     special.out_of_round = 0.01;
-    run({"jar 30% out of round 1%", special}, 1);
+    if (std::strstr("jar 30% out of round 1%", only))
+      for (unsigned seed = 1; seed <= unsigned(seeds); ++seed) run({"jar 30% out of round 1%", special}, seed);
+    special = sherd(VesselShape::jar, 360, 0, 1, 0.05, false);
+    special.out_of_round = 0.01;
+    if (std::strstr("jar whole out of round 1%", only))
+      for (unsigned seed = 1; seed <= unsigned(seeds); ++seed) run({"jar whole out of round 1%", special}, seed);
     special = sherd(VesselShape::jar, 108, 0.4, 1, 0.1, true);
     special.incised = true;
-    run({"jar 30% incised", special}, 1);
+    if (std::strstr("jar 30% incised", only)) run({"jar 30% incised", special}, 1);
   }
+  if (*only) return 0;
   // Size: a half jar at about 1 M faces (edge 0.125 mm), regular and irregular triangles.
   for (bool irregular : {false, true}) {
     SherdOptions big = sherd(VesselShape::jar, 180, 0.2, 1, 0.1, irregular);

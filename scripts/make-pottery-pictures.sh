@@ -30,7 +30,7 @@ cat >"$out/record.mlx" <<'EOF'
  </filter>
 </FilterScript>
 EOF
-"$here/scripts/meshlabserver" -i "$out/sherd.ply" -s "$out/record.mlx" -o "$out/oriented.ply" -m vc -l 0 \
+"$here/scripts/meshlabserver" -i "$out/sherd.ply" -s "$out/record.mlx" -o "$out/oriented.ply" -l 0 -m vc \
   -o "$out/profile.obj" -l 1 >"$out/record.log" 2>&1
 grep -E "^LOG: 2 (Axis|Up|Rim)" "$out/record.log" | sed 's/^LOG: 2 //'
 # The oriented sherd without its colours (to show the shape and the profile), then coloured.

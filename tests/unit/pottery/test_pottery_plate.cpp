@@ -53,7 +53,8 @@ TEST(PotteryPlate, WholeJarInHalfSection) {
   EXPECT_LE(right, axis_x + 1e-6);
   EXPECT_NEAR(axis_x - left, d.sherd.largest_radius, 0.02 * d.sherd.largest_radius);
   // The exterior (its shading raster) starts at the axis: the right half of the jar.
-  EXPECT_NEAR(d.plate.drawing_origin_mm.x(), axis_x, 1.0);  // faces across the axis: within an edge (1 mm)
+  // Faces across the axis reach beyond it by up to their longest edge (irregular, 1 mm nominal).
+  EXPECT_NEAR(d.plate.drawing_origin_mm.x(), axis_x, 1.5);
   EXPECT_NEAR(d.plate.drawing_size_mm.x(), d.sherd.largest_radius, 0.03 * d.sherd.largest_radius);
   // The rim line across both halves and the diameter written.
   const PlatePath* rim = path_of(d.plate, "rim line");

@@ -15,8 +15,10 @@
 // the two smallest eigenvalues nearly equal); every position fits (a flat tile: the normals span
 // too little of the plane across the axis); the normals do not meet one line (a figurine: large
 // angles on most of the surface). The uncertainty of the direction and of the axis' position is
-// a jackknife over 16 patches of the piece (4 around the axis × 4 along it), so errors shared by
-// neighbouring faces (an out-of-round pot, noise correlated over a few triangles) count.
+// the larger of two jackknives over patches of the piece, so errors shared by neighbouring faces
+// (an out-of-round pot, noise correlated over a few triangles) count: the normal lines' fit
+// without each of 16 patches (4 around the axis × 4 along it), and the thinnest-profile step
+// without each of 8 (4 × 2), which sees how loosely the profile holds a small sherd's axis.
 #pragma once
 
 #include <string>
@@ -52,8 +54,8 @@ struct VesselAxisFit {
   double cutoff_deg = 0;            // the outlier angle used
   double direction_ambiguity = 0;   // λ1 / λ2 of the direction problem: near 1, every direction fits
   double position_spread = 0;       // how fully the normals span the plane across the axis (0..1)
-  double angle_uncertainty_deg = 0; // jackknife standard error of the direction
-  double offset_uncertainty = 0;    // jackknife standard error of the axis' position (mesh units)
+  double angle_uncertainty_deg = 0; // standard error of the direction (jackknife, see above)
+  double offset_uncertainty = 0;    // standard error of the axis' position (mesh units)
   int iterations = 0;
   std::vector<double> face_weight;  // 0..1 per face: 1 wall, 0 left out
   std::vector<Vec3> face_normal;    // per face: the smoothed surface's unit normal (zero on a face without area)
