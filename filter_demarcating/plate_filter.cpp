@@ -77,19 +77,8 @@ void plate_parameters(const MeshModel&, RichParameterList& par) {
 
 // A layer's edges as curves, its vertex quality (the curve filters' strength) as their strength.
 PlateCurves curves_of(MeshModel& m, double width_mm) {
-  PlateCurves c{m.label().toStdString(), {}, {}, width_mm, {}};
-  const bool strength = m.hasDataMask(MeshModel::MM_VERTQUALITY);
-  std::vector<int> index(size_t(m.cm.vert.size()), -1);
-  for (size_t i = 0; i < m.cm.vert.size(); ++i)
-    if (!m.cm.vert[i].IsD()) {
-      const auto& q = m.cm.vert[i].cP();
-      index[i] = int(c.points.size());
-      c.points.push_back(Vec3(q[0], q[1], q[2]));
-      if (strength) c.strength.push_back(m.cm.vert[i].cQ());
-    }
-  for (const auto& e : m.cm.edge)
-    if (!e.IsD()) c.segments.push_back({index[size_t(vcg::tri::Index(m.cm, e.cV(0)))], index[size_t(vcg::tri::Index(m.cm, e.cV(1)))]});
-  return c;
+  Polylines c = curves_of_layer(m);
+  return PlateCurves{m.label().toStdString(), std::move(c.points), std::move(c.segments), width_mm, std::move(c.strength)};
 }
 
 // The layers of curves to draw: every layer of edges without faces, or the ones named (each must

@@ -120,6 +120,22 @@ void write_grey(MeshModel& m, const View& view, const std::vector<double>& grey,
   });
 }
 
+Polylines curves_of_layer(const MeshModel& m) {
+  Polylines c;
+  const bool strength = m.hasDataMask(MeshModel::MM_VERTQUALITY);
+  std::vector<int> index(size_t(m.cm.vert.size()), -1);
+  for (size_t i = 0; i < m.cm.vert.size(); ++i)
+    if (!m.cm.vert[i].IsD()) {
+      const auto& q = m.cm.vert[i].cP();
+      index[i] = int(c.points.size());
+      c.points.push_back(Vec3(q[0], q[1], q[2]));
+      if (strength) c.strength.push_back(m.cm.vert[i].cQ());
+    }
+  for (const auto& e : m.cm.edge)
+    if (!e.IsD()) c.segments.push_back({index[size_t(vcg::tri::Index(m.cm, e.cV(0)))], index[size_t(vcg::tri::Index(m.cm, e.cV(1)))]});
+  return c;
+}
+
 QString derived_label(const MeshModel& m, const QString& what) {
   QString name = m.label();
   int dot = name.lastIndexOf('.');

@@ -50,6 +50,10 @@ MeshModel* add_surface_layer(MeshDocument& doc, const QString& label, MeshModel&
 MeshModel* add_mesh_layer(MeshDocument& doc, const QString& label, const TriMesh& mesh, const std::vector<double>& quality,
                           const std::vector<std::pair<const char*, const std::vector<double>*>>& attributes, bool current);
 
+/// A layer's live vertices and edges as curves: its points, their strength = vertex quality (empty
+/// when the layer has none), its segments.
+Polylines curves_of_layer(const MeshModel& m);
+
 /// "<mesh name> – <what>": the label of a layer derived from `m` (file extension dropped).
 QString derived_label(const MeshModel& m, const QString& what);
 

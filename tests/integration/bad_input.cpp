@@ -9,7 +9,7 @@
 
 namespace rktest {
 
-void expect_bad_input_handled(const FilterRun& run, const std::string& flat_refusal) {
+void expect_bad_input_handled(const FilterRun& run, const std::string& flat_refusal, const std::string& damaged_refusal) {
   auto expect_message = [&](const std::string& name, const reliefkit::TriMesh& m, const std::string& text) {
     ServerRun r = run(name, m);
     EXPECT_FALSE(r.crashed) << name << ": " << r.output;
@@ -34,7 +34,12 @@ void expect_bad_input_handled(const FilterRun& run, const std::string& flat_refu
   m.vertices.push_back(m.vertices[7]);
   m.faces.push_back({7, m.n_vertices() - 1, 7});  // zero area
   m.vertices.push_back({9, 9, 9});                // isolated vertex
-  expect_success("nonmanifold", m);
+  if (damaged_refusal.empty()) {
+    expect_success("nonmanifold", m);
+  } else {
+    expect_message("nonmanifold", m, "Repaired for the computation");
+    expect_message("nonmanifold_refused", m, damaged_refusal);
+  }
   const reliefkit::TriMesh flat = height_field([](double, double) { return 0.0; }, 1.0, 30, 0.3);
   if (flat_refusal.empty()) expect_success("flat", flat);
   else expect_message("flat", flat, flat_refusal);

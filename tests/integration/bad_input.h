@@ -15,7 +15,8 @@ using FilterRun = std::function<ServerRun(const std::string& name, const reliefk
 
 /// Runs all the cases with `run` and records gtest failures. `flat_refusal`: for a filter whose
 /// input must have a shape (a vessel's axis), the message the flat plane must be refused with,
-/// instead of a successful run.
-void expect_bad_input_handled(const FilterRun& run, const std::string& flat_refusal = "");
+/// instead of a successful run. `damaged_refusal`: likewise for the damaged mesh (a relief disc on
+/// a plane), for a filter that needs a wall round an axis: its repair is logged, then the refusal.
+void expect_bad_input_handled(const FilterRun& run, const std::string& flat_refusal = "", const std::string& damaged_refusal = "");
 
 }  // namespace rktest

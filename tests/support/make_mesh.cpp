@@ -9,6 +9,8 @@
 //   rk_make_mesh dome W H cell out.ply           (a smooth dome W x H, cell apart: a base for drawings)
 //   rk_make_mesh sherd jar|bowl|beaker SPAN FROM TO NOISE SEED out.ply
 //                                                (a vessel or sherd of known profile, random pose, mm; sherds.h)
+//   rk_make_mesh turned cylinder|cone|globe RELIEF BAND SEED out.ply
+//                                                (a seal, cone or belly with a design of known height, random pose; turned.h)
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -22,6 +24,7 @@
 #include "mesh_files.h"
 #include "shapes.h"
 #include "sherds.h"
+#include "turned.h"
 
 int main(int argc, char** argv) {
   std::string kind = argc > 1 ? argv[1] : "";
@@ -39,6 +42,16 @@ int main(int argc, char** argv) {
       std::printf("faces %d rim diameter %.4f axis point %.4f %.4f %.4f direction %.6f %.6f %.6f\n", sh.mesh.n_faces(),
                   sh.rim_diameter, sh.axis_point.x(), sh.axis_point.y(), sh.axis_point.z(), sh.axis_direction.x(),
                   sh.axis_direction.y(), sh.axis_direction.z());
+    } else if (kind == "turned" && argc == 7) {
+      rktest::TurnedOptions o;
+      const std::string shape = argv[2];
+      o.shape = shape == "cone" ? rktest::TurnedShape::cone : shape == "globe" ? rktest::TurnedShape::globe : rktest::TurnedShape::cylinder;
+      if (o.shape == rktest::TurnedShape::globe) o.radius = 20, o.length = 24;
+      o.relief = std::atof(argv[3]), o.band = std::atoi(argv[4]) != 0, o.seed = unsigned(std::atol(argv[5])), o.irregular = true;
+      const rktest::Turned t = rktest::make_turned(o);
+      rktest::write_ply(argv[6], t.mesh);
+      std::printf("faces %d middle radius %.4f axis point %.4f %.4f %.4f direction %.6f %.6f %.6f\n", t.mesh.n_faces(), t.middle_radius,
+                  t.axis_point.x(), t.axis_point.y(), t.axis_point.z(), t.axis_direction.x(), t.axis_direction.y(), t.axis_direction.z());
     } else if (kind == "torus" && argc == 9) {
       auto m = rktest::torus(std::atof(argv[2]), std::atof(argv[3]), std::atoi(argv[4]), std::atoi(argv[5]),
                              std::atof(argv[6]), std::atoi(argv[7]));

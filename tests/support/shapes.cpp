@@ -1,5 +1,7 @@
 #include "shapes.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <array>
@@ -210,6 +212,15 @@ std::vector<double> distance_to_surface(const TriMesh& mesh, const std::vector<V
     out.push_back(best <= reach ? best : std::numeric_limits<double>::infinity());
   }
   return out;
+}
+
+void place_randomly(TriMesh& mesh, Vec3& axis_point, Vec3& axis_direction, std::mt19937& rng,
+                    std::normal_distribution<double>& gauss, double spread) {
+  Eigen::Quaterniond q(gauss(rng), gauss(rng), gauss(rng), gauss(rng));
+  q.normalize();
+  const Vec3 shift(spread * gauss(rng), spread * gauss(rng), spread * gauss(rng));
+  for (Vec3& p : mesh.vertices) p = q * p + shift;
+  axis_point = q * axis_point + shift, axis_direction = q * axis_direction;
 }
 
 }  // namespace rktest

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <random>
 
 #include "reliefkit/base/mesh.h"
 
@@ -20,6 +21,11 @@ void torus_params(double R, double r, const Vec3& p, double& u, double& v);
 
 // Sphere of radius r: a subdivided icosahedron projected on the sphere (levels >= 0).
 TriMesh sphere(double r, int levels, double jitter = 0, uint32_t seed = 1);
+
+/// Moves `mesh` by a random rotation and a translation of about `spread` per coordinate (the
+/// generators' random pose; `gauss` draws from `rng`), and the axis (point, direction) with it.
+void place_randomly(TriMesh& mesh, Vec3& axis_point, Vec3& axis_direction, std::mt19937& rng,
+                    std::normal_distribution<double>& gauss, double spread);
 
 // Open cylinder of radius r around z, height h; k1 = 1/r, k2 = 0.
 TriMesh cylinder(double r, double h, int nu, int nz, double jitter = 0, uint32_t seed = 1);

@@ -1,5 +1,7 @@
 #include "sherds.h"
 
+#include "shapes.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -203,13 +205,7 @@ Sherd make_sherd(const SherdOptions& o) {
   for (Vec3& p : b.mesh.vertices) p += o.noise * o.edge * Vec3(gauss(rng), gauss(rng), gauss(rng));
   sh.mesh = std::move(b.mesh);
   sh.axis_point = Vec3::Zero(), sh.axis_direction = Vec3::UnitZ();
-  if (o.random_pose) {
-    Eigen::Quaterniond q(gauss(rng), gauss(rng), gauss(rng), gauss(rng));
-    q.normalize();
-    const Vec3 t(100 * gauss(rng), 100 * gauss(rng), 100 * gauss(rng));
-    for (Vec3& p : sh.mesh.vertices) p = q * p + t;
-    sh.axis_point = t, sh.axis_direction = q * Vec3::UnitZ();
-  }
+  if (o.random_pose) place_randomly(sh.mesh, sh.axis_point, sh.axis_direction, rng, gauss, 100);
   return sh;
 }
 

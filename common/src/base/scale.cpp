@@ -337,6 +337,16 @@ double percentile(std::vector<double> values, double q) {
   return *k;
 }
 
+double weighted_median(std::vector<std::pair<double, double>> value_weight) {
+  std::sort(value_weight.begin(), value_weight.end());
+  double total = 0;
+  for (const auto& vw : value_weight) total += vw.second;
+  double run = 0;
+  for (const auto& vw : value_weight)
+    if ((run += vw.second) >= total / 2) return vw.first;
+  return value_weight.empty() ? 0 : value_weight.back().first;
+}
+
 }  // namespace reliefkit
 
 namespace reliefkit {

@@ -19,6 +19,7 @@
 #include <random>
 #include <unordered_map>
 
+#include "reliefkit/base/scale.h"
 #include "reliefkit/base/smoothing.h"
 
 namespace reliefkit {
@@ -188,16 +189,6 @@ double off_axis_angle(const FaceSample& s, const Vec3& d, const Vec3& a) {
   const double distance = radial.norm();
   if (distance < 1e-9) return 0;
   return std::asin(std::clamp(d.dot(radial.cross(s.n)) / distance, -1.0, 1.0));
-}
-
-double weighted_median(std::vector<std::pair<double, double>> value_weight) {
-  std::sort(value_weight.begin(), value_weight.end());
-  double total = 0;
-  for (const auto& vw : value_weight) total += vw.second;
-  double run = 0;
-  for (const auto& vw : value_weight)
-    if ((run += vw.second) >= total / 2) return vw.first;
-  return value_weight.empty() ? 0 : value_weight.back().first;
 }
 
 double tukey(double u) { return std::abs(u) < 1 ? (1 - u * u) * (1 - u * u) : 0; }

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "reliefkit/base/mesh.h"
@@ -117,6 +118,10 @@ int noise_patch_cells(long long faces);
 
 /// The value below which the top `1 - q` of `values` lie (0 if empty).
 double percentile(std::vector<double> values, double q);
+
+/// The median of (value, weight) pairs: the smallest value at which the weights below and at it
+/// reach half the total (0 if empty).
+double weighted_median(std::vector<std::pair<double, double>> value_weight);
 
 }  // namespace reliefkit
 

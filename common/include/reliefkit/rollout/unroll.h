@@ -1,0 +1,119 @@
+// ReliefKit — rollouts (issue 43): a scan unrolled around an axis onto a plane, so that the
+// decoration round a vessel, a column or a cylinder seal can be drawn flat.
+//
+// The base is the surface of revolution the piece's outer surface follows: one radius per height
+// along the axis, from the area-weighted median radius of the faces facing outwards height by
+// height — either straight (a cylinder or cone: a robust line through those radii) or a smooth
+// profile (robust local regression over a window, so that bands and grooves round the piece
+// narrower than half the window stay relief). Every point is mapped to (across, along, height):
+// its base point's position on the developed base, and its height over the base along the
+// base's normal, so the relief keeps its heights.
+
+// The development is a generalized Bonne projection: each parallel of the base goes to a
+// circular arc of its true length, all arcs concentric, the middle meridian straight and true.
+// It is exact (no stretch) for cylinders and cones — the arcs' centre is then the cone's apex —
+// and equal-area for every base; on a curved profile (a globular pot) the meridians away from the
+// middle shear, and that stretch is measured per edge and reported. Chosen over developing bands
+// as separate cones (GigaMesh): one sheet, no gaps between bands, the same map for the curves.
+//
+// The seam is a meridian: given as an angle, or chosen where the fewest faces carry relief (for
+// a piece that is not closed round the axis: the middle of the widest empty sector). Faces across
+// it are moved to one side by copies of their vertices on the other, so the rollout is one sheet.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "reliefkit/base/mesh.h"
+#include "reliefkit/base/surface.h"
+#include "reliefkit/base/zero_crossings.h"
+#include "reliefkit/pottery/vessel_axis.h"
+
+namespace reliefkit {
+
+enum class AxisSource { fitted, oriented_z, given };
+enum class BaseShape { smooth, straight };
+
+struct UnrollParams {
+  AxisSource axis_source = AxisSource::fitted;
+  AxisLine given_axis;                // used when axis_source == given
+  VesselAxisParams fit;               // when fitted
+  BaseShape base = BaseShape::smooth;
+  double base_window_edges = 0;       // the smooth profile's window; 0: half the length along the axis (at least 20 edges)
+  std::optional<double> seam_deg;     // about the axis, from the reference direction; else automatic
+  bool impression = false;            // mirrored, relief inverted: what a seal prints on clay
+  Progress progress = nullptr;
+  void validate() const;              // throws InputError naming the parameter
+};
+
+/// The base surface of revolution: its profile as (radius, height) points along the axis, with
+/// the arc length from the first.
+struct BaseProfile {
+  std::vector<Vec2> rz;     // radius, height; heights increasing
+  std::vector<double> s;    // arc length along the profile
+  /// The nearest point of the profile to (r, z): its arc length, the point, the outward unit
+  /// normal there (towards larger radius on a vertical wall).
+  struct Foot {
+    double s = 0;
+    Vec2 point = Vec2::Zero(), normal = Vec2::UnitX();
+  };
+  Foot foot(const Vec2& rz_point) const;
+  Vec2 at(double arc_length) const;        // the profile's point at an arc length (clamped)
+  double slope_at(double arc_length) const; // d radius / d arc length there
+};
+
+/// The map from the axis' frame to the rollout's plane.
+class RolloutMap {
+ public:
+  RolloutMap(const AxisLine& axis, const Vec3& reference, BaseProfile base, double seam_angle, bool impression);
+  struct Point {
+    Vec3 position;      // across (along the circumference), along (the profile), height over the base
+    double angle = 0;   // about the axis from the middle meridian, in (-pi, pi]
+    Vec3 base_point;    // the foot on the base surface, in the input's frame
+  };
+  /// `turns`: added to the angle from the middle meridian in whole turns (a seam copy: +-1).
+  Point map(const Vec3& p, int turns = 0) const;
+  double angle_of(const Vec3& p) const;  // about the axis from the middle meridian, in (-pi, pi]
+  double reference_radius() const { return r0_; }
+  double seam_angle() const { return seam_; }
+  const BaseProfile& base() const { return base_; }
+  const AxisLine& axis() const { return axis_; }
+
+ private:
+  Vec2 develop(double angle, double arc_length) const;
+  AxisLine axis_;
+  Vec3 u_, v_;            // the reference direction and the third, square to the axis
+  BaseProfile base_;
+  double seam_ = 0;       // the seam's angle from the reference direction
+  double s0_ = 0, r0_ = 0, apex_ = 0;  // reference parallel; its radius; signed distance to the arcs' centre (0: a cylinder)
+  bool impression_ = false;
+};
+
+struct Rollout {
+  TriMesh mesh;                    // the input's vertices in order, then the seam copies
+  std::vector<int> copy_of;        // per seam copy (mesh.vertices beyond the input's): the input vertex
+  std::vector<double> height;      // per vertex of mesh: over the base (the relief; inverted for an impression)
+  std::vector<double> stretch;     // per vertex of mesh: the mean change of its edges' lengths from the base to the sheet (0.01 = 1 %)
+  double stretch_median = 0, stretch_p90 = 0;  // over the faces' edges
+  double width = 0;                // the reference parallel's length: the circumference at reference_radius
+  AxisSource axis_source = AxisSource::fitted;
+  std::optional<VesselAxisFit> fit;
+  std::optional<RolloutMap> map;
+  double seam_relief = 0;          // the relief the seam crosses (rms height off the base near it)
+  bool seam_automatic = false, seam_in_gap = false;
+  bool impression = false;
+};
+
+/// Unrolls the surface. Throws InputError with what was measured when no axis is determined (a
+/// sphere, a plane), the mesh has no faces, or the base cannot be built.
+Rollout unroll(const Surface& surface, const UnrollParams& params = {});
+
+/// The curves unrolled with the mesh: each point mapped; a segment across the seam cut there
+/// into two, one on each edge of the sheet.
+Polylines unroll_curves(const Polylines& curves, const RolloutMap& map);
+
+/// Log lines for the filter: axis, base, seam, stretch, impression.
+std::vector<std::string> rollout_log_lines(const Rollout& r);
+
+}  // namespace reliefkit
