@@ -9,12 +9,13 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 releases=("$@"); [ ${#releases[@]} -gt 0 ] || releases=(2022 2025)
 work="$here/build/releases"   # inside the tree: the roots see it at $tree_in_root/build/releases
-rm -rf "$work"; mkdir -p "$work/inputs/mesh" "$work/inputs/drawing" "$work/inputs/figure" "$work/inputs/profile" "$work/inputs/sherd"
+rm -rf "$work"; mkdir -p "$work/inputs/mesh" "$work/inputs/drawing" "$work/inputs/figure" "$work/inputs/profile" "$work/inputs/sherd" "$work/inputs/seal"
 cp "$here/examples/data/penny.ply" "$work/inputs/mesh/penny.ply"  # a real scan: every filter draws curves on it
 cp "$here/examples/data/nested_drawing.png" "$work/inputs/drawing/nested.png"
 cp "$here/examples/data/lamp_figure.png" "$work/inputs/figure/lamp.png"
 cp "$here/examples/data/jar_half_section.png" "$work/inputs/profile/jar.png"
 "$here/build/tests/rk_make_mesh" sherd jar 108 0.7 1 0.1 1 "$work/inputs/sherd/rim_sherd.ply" >/dev/null  # a third of a jar's rim
+"$here/build/tests/rk_make_mesh" turned cylinder 1.0 0 1 "$work/inputs/seal/seal.ply" >/dev/null  # a cylinder seal with five figures
 source "$here/scripts/chroot-mounts.sh"
 
 t0=$SECONDS

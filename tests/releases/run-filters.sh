@@ -31,4 +31,6 @@ run illustration_plate mesh ply --script "$(dirname "${BASH_SOURCE[0]}")/../../e
 # Pottery: a synthetic rim sherd turned onto its axis; the example script adds its pottery plate.
 run vessel_axis_and_profile sherd ply "Vessel Axis and Profile"
 run pottery_plate sherd ply --script "$(dirname "${BASH_SOURCE[0]}")/../../examples/pottery.mlx"
+# Rollout: a synthetic cylinder seal unrolled (its rollout layer).
+run unroll_around_axis seal ply "Unroll Around Axis"
 exit $status
