@@ -151,6 +151,16 @@ TEST(Unroll, RefusesWhatTurnsAboutNoAxis) {
   TriMesh cloud;
   cloud.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
   EXPECT_THROW(unroll(Surface(cloud)), InputError);
+  // A piece the vessel fit lets through but that does not turn about its axis (a cylinder whose
+  // figures stand out as far as its radius): refused with the figure, as the scans' coin and ingot are.
+  TurnedOptions lumpy;
+  lumpy.relief = 15;
+  try {
+    unroll(Surface(rktest::make_turned(lumpy).mesh));
+    ADD_FAILURE() << "a lumpy cylinder was unrolled about a fitted axis";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("does not turn about the fitted axis"), std::string::npos) << e.what();
+  }
   UnrollParams bad;
   bad.axis_source = AxisSource::given, bad.given_axis.direction = Vec3::Zero();
   EXPECT_THROW(unroll(Surface(rktest::make_turned({}).mesh), bad), InputError);

@@ -101,12 +101,15 @@ struct Rollout {
   std::optional<VesselAxisFit> fit;
   std::optional<RolloutMap> map;
   double seam_relief = 0;          // the relief the seam crosses (rms height off the base near it)
+  double relief_rms = 0;           // how far the surface lies from its base (rms over the input's vertices)
   bool seam_automatic = false, seam_in_gap = false;
   bool impression = false;
 };
 
 /// Unrolls the surface. Throws InputError with what was measured when no axis is determined (a
-/// sphere, a plane), the mesh has no faces, or the base cannot be built.
+/// sphere, a plane), the mesh has no faces, the base cannot be built, or — with the axis fitted —
+/// the surface lies more than a tenth of the base's radius (rms) from its base: it does not turn
+/// about that axis (a coin's face, an ingot), and its rollout would be no sheet of a relief.
 Rollout unroll(const Surface& surface, const UnrollParams& params = {});
 
 /// The curves unrolled with the mesh: each point mapped; a segment across the seam cut there
