@@ -35,8 +35,8 @@ seed_test_costs "$here/build" "$here/tests/costs/release.txt"
 # Tests write only into temporary folders: the source tree's files (the build folders, third_party/
 # and out/ aside) are the same after the tests as before them.
 source_tree_state() {
-  git -C "$here" status --porcelain --ignored --untracked-files=all 2>/dev/null |
-    grep -vE '^(!!|\?\?) (build[^/]*/|third_party/|out/)' || true
+  git -C "$here" -c core.quotepath=off status --porcelain --ignored --untracked-files=all 2>/dev/null |
+    grep -vE '^(!!|\?\?) "?(build[^/]*/|third_party/|out/)' || true
 }
 tree_before="$(source_tree_state)"
 stage "unit and integration tests (Release, $jobs at a time)" \
