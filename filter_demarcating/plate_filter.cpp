@@ -15,6 +15,7 @@
 #include "params.h"
 #include "reliefkit/illustration/plate.h"
 #include "reliefkit/pottery/vessel_record.h"
+#include "reliefkit/rollout/unroll.h"
 
 namespace reliefkit::ml {
 namespace {
@@ -145,10 +146,20 @@ Plate pottery_plate(FilterCall& call, View& view, const std::vector<double>& gre
   return make_pottery_plate(view.mesh, grey, layers, pottery_sheet(record), p);
 }
 
+// A rollout made by Unroll Around Axis in this session: facing the sheet (from +Z, its axis up),
+// its seam dash-dot, named a rollout or a seal impression with its circumference.
+void mark_rollout(FilterCall& call, PlateParams& p) {
+  const std::optional<SheetMarks> marks = sheet_marks_of(call.mesh());
+  if (!marks) return;
+  p.guides = marks->seams;
+  p.titles = sheet_labels(*marks, p.unit_mm);
+  call.log("Plate of a rollout: its seam drawn dash-dot, its title \"" + QString::fromStdString(p.titles.front()) + "\".");
+}
+
 PlateView plate_view(FilterCall& call, const View& view) {
   PlateView v;
   const int view_choice = read_enum(call, "view", "View", kViews.size());
-  if (view_choice == 0) v = facing_view(view.mesh);
+  if (view_choice == 0 && !sheet_marks_of(call.mesh())) v = facing_view(view.mesh);  // a rollout: the default, from +Z
   if (view_choice == 2) {
     const vcg::Point3f d = call.params.getPoint3m("direction");
     v.direction = Vec3(d[0], d[1], d[2]);
@@ -156,16 +167,27 @@ PlateView plate_view(FilterCall& call, const View& view) {
   return v;
 }
 
+// The folder a relative plate name goes to: the mesh's file's, or — for a layer a filter made (a
+// rollout) — the file's of the first layer of the document that has one (the scan it came from).
+QString plate_folder(FilterCall& call) {
+  if (!call.mesh().fullName().isEmpty()) return call.mesh().pathName();
+  for (MeshModel* m : document_layers(call.doc))
+    if (!m->fullName().isEmpty()) return m->pathName();
+  throw InputError(qUtf8Printable("The layer \"" + call.mesh().label() + "\" has no file (a filter made it) and no layer "
+                                  "has one, so there is no folder for the plate: give the plate file a full path."));
+}
+
+// The default name: <mesh file's name>-plate.svg, or the layer's label made a file name.
+QString plate_name(const MeshModel& m) {
+  QString base = m.fullName().isEmpty() ? m.label() : QFileInfo(m.fullName()).completeBaseName();
+  if (m.fullName().isEmpty()) base.replace(QString::fromUtf8(" \u2013 "), "-").replace(' ', '_');
+  return base + "-plate.svg";
+}
+
 // The SVG file asked for (a relative name or none: beside the mesh's file), written.
 QString write_svg(FilterCall& call, const Plate& plate) {
   QString svg = call.params.getSaveFileName("file").trimmed();
-  if (svg.isEmpty() || QFileInfo(svg).isRelative()) {
-    if (call.mesh().fullName().isEmpty())
-      throw InputError(qUtf8Printable("The layer \"" + call.mesh().label() + "\" has no file (a filter made it), so there is "
-                                      "no folder beside it for the plate: give the plate file a full path, or save the layer first."));
-    if (svg.isEmpty()) svg = QFileInfo(call.mesh().fullName()).completeBaseName() + "-plate.svg";
-    svg = call.mesh().pathName() + "/" + svg;
-  }
+  if (svg.isEmpty() || QFileInfo(svg).isRelative()) svg = plate_folder(call) + "/" + (svg.isEmpty() ? plate_name(call.mesh()) : svg);
   QFile out(svg);
   if (!out.open(QIODevice::WriteOnly) || out.write(QByteArray::fromStdString(plate_svg(plate))) < 0)
     throw InputError(qUtf8Printable("The plate could not be written to " + svg + " (check the folder exists and is writable)."));
@@ -200,6 +222,7 @@ void apply_plate(FilterCall& call) {
   if (read_enum(call, "view", "View", kViews.size()) == kPotteryView) {
     plate = pottery_plate(call, view, grey, layers, p);
   } else {
+    mark_rollout(call, p);
     plate = make_plate(view.mesh, grey, layers, plate_view(call, view), p);
   }
   const QString svg = write_svg(call, plate);

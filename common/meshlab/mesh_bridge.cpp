@@ -1,5 +1,7 @@
 #include "mesh_bridge.h"
 
+#include "reliefkit/rollout/unroll.h"
+
 #include <vcg/complex/append.h>
 
 #include <algorithm>
@@ -155,6 +157,21 @@ QString thousands(long long n) {
   QString s = QString::number(n < 0 ? -n : n);
   for (int i = s.size() - 3; i > 0; i -= 3) s.insert(i, ',');
   return n < 0 ? "-" + s : s;
+}
+
+namespace {
+constexpr const char* kSheetMarks = "reliefkit_rollout_marks";
+}
+
+void set_sheet_marks(MeshModel& m, const SheetMarks& marks) {
+  auto h = vcg::tri::Allocator<CMeshO>::GetPerMeshAttribute<SheetMarks>(m.cm, kSheetMarks);
+  h() = marks;
+}
+
+std::optional<SheetMarks> sheet_marks_of(MeshModel& m) {
+  auto h = vcg::tri::Allocator<CMeshO>::FindPerMeshAttribute<SheetMarks>(m.cm, kSheetMarks);
+  if (!vcg::tri::Allocator<CMeshO>::IsValidHandle(m.cm, h)) return std::nullopt;
+  return h();
 }
 
 }  // namespace reliefkit::ml

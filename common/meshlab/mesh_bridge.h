@@ -5,12 +5,17 @@
 
 #include <QString>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "reliefkit/base/mesh.h"
 #include "reliefkit/base/surface.h"
 #include "reliefkit/base/vcg_adapter.h"
 #include "reliefkit/base/zero_crossings.h"
+
+namespace reliefkit {
+struct SheetMarks;  // reliefkit/rollout/unroll.h
+}
 
 namespace reliefkit::ml {
 
@@ -62,6 +67,11 @@ void write_grey(MeshModel& m, const View& view, const std::vector<double>& grey,
 
 /// Writes a named per-vertex Point3 attribute.
 void write_vertex_vectors(CMeshO& m, const View& v, const char* name, const std::vector<Vec3>& values);
+
+/// A rollout's marks (its seam, what the sheet is) kept on its layer for the filters that follow in
+/// the same session (the plate): a per-mesh attribute, not saved with the mesh's file.
+void set_sheet_marks(MeshModel& m, const SheetMarks& marks);
+std::optional<SheetMarks> sheet_marks_of(MeshModel& m);
 
 /// "12,345" — numbers in log lines.
 QString thousands(long long n);

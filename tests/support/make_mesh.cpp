@@ -9,8 +9,9 @@
 //   rk_make_mesh dome W H cell out.ply           (a smooth dome W x H, cell apart: a base for drawings)
 //   rk_make_mesh sherd jar|bowl|beaker SPAN FROM TO NOISE SEED out.ply
 //                                                (a vessel or sherd of known profile, random pose, mm; sherds.h)
-//   rk_make_mesh turned cylinder|cone|globe RELIEF BAND SEED out.ply
-//                                                (a seal, cone or belly with a design of known height, random pose; turned.h)
+//   rk_make_mesh turned cylinder|cone|globe RELIEF DESIGN SEED out.ply
+//                                                (a seal, cone or belly with a design of known height, random pose; turned.h;
+//                                                 DESIGN 0: five bumps, 1: a band, 2: a frieze of figures)
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -47,7 +48,8 @@ int main(int argc, char** argv) {
       const std::string shape = argv[2];
       o.shape = shape == "cone" ? rktest::TurnedShape::cone : shape == "globe" ? rktest::TurnedShape::globe : rktest::TurnedShape::cylinder;
       if (o.shape == rktest::TurnedShape::globe) o.radius = 20, o.length = 24;
-      o.relief = std::atof(argv[3]), o.band = std::atoi(argv[4]) != 0, o.seed = unsigned(std::atol(argv[5])), o.irregular = true;
+      o.relief = std::atof(argv[3]), o.band = std::atoi(argv[4]) == 1, o.frieze = std::atoi(argv[4]) == 2;
+      o.seed = unsigned(std::atol(argv[5])), o.irregular = true;
       const rktest::Turned t = rktest::make_turned(o);
       rktest::write_ply(argv[6], t.mesh);
       std::printf("faces %d middle radius %.4f axis point %.4f %.4f %.4f direction %.6f %.6f %.6f\n", t.mesh.n_faces(), t.middle_radius,

@@ -49,9 +49,48 @@ double half_arc(const TurnedOptions& o) {
   return 0;
 }
 
-// The design's height at angle theta and arc length t: five round bumps (a seal's figures), or a
-// band round the middle a fifth of the length wide, its edges eased over two edge lengths.
+// Distance from p to the segment ab.
+double to_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double u = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (p - a - u * ab).norm();
+}
+
+// The frieze's share of full height at (along the circumference, along the profile), `h` the half
+// arc: strokes of half-width w, eased over w.
+double frieze(double along, double t, double h, double circumference, double w) {
+  auto stroke = [&](double d) {
+    const double x = std::clamp((1.5 * w - d) / w, 0.0, 1.0);
+    return x * x * (3 - 2 * x);
+  };
+  double share = std::max(stroke(std::abs(t - 0.8 * h)), stroke(std::abs(t + 0.8 * h)));  // the border lines
+  for (int k = 0; k < 4; ++k) {
+    const double c = (k + 0.5) * circumference / 4;
+    const Vec2 p(std::remainder(along - c, circumference), t);  // near this figure, the seam's wrap taken off
+    const double body = to_segment(p, Vec2(0, -0.55 * h), Vec2(0, 0.25 * h));
+    const double legs = std::min(to_segment(p, Vec2(0, -0.15 * h), Vec2(-0.12 * h, -0.6 * h)),
+                                 to_segment(p, Vec2(0, -0.15 * h), Vec2(0.12 * h, -0.6 * h)));
+    const double arm = to_segment(p, Vec2(0, 0.12 * h), Vec2(0.28 * h, 0.42 * h));  // raised forwards (+along)
+    const double head = std::abs((p - Vec2(0, 0.42 * h)).norm() - 0.1 * h);         // a ring
+    share = std::max({share, stroke(body), stroke(legs), stroke(arm), stroke(head)});
+    const Vec2 star = Vec2(std::remainder(along - c - circumference / 8, circumference), t - 0.35 * h);
+    for (int ray = 0; ray < 3; ++ray) {
+      const double a = ray * M_PI / 3;
+      const Vec2 d(0.1 * h * std::cos(a), 0.1 * h * std::sin(a));
+      share = std::max(share, stroke(to_segment(star, -d, d)));
+    }
+  }
+  return share;
+}
+
+// The design's height at angle theta and arc length t: five round bumps (a seal's figures), a
+// band round the middle a fifth of the length wide (its edges eased over two edge lengths), or
+// the frieze.
 double design(const TurnedOptions& o, double theta, double t, double radius) {
+  if (o.frieze) {
+    const double c = 2 * M_PI * radius;
+    return o.relief * frieze(radius * std::remainder(theta, 2 * M_PI) + c / 2, t, half_arc(o), c, 0.8 * o.edge);
+  }
   if (o.band) {
     const double half = 0.1 * 2 * half_arc(o), ease = 2 * o.edge;
     const double inside = std::clamp((half - std::abs(t)) / ease + 0.5, 0.0, 1.0);
@@ -65,6 +104,56 @@ double design(const TurnedOptions& o, double theta, double t, double radius) {
     h = std::max(h, std::exp(-(along * along + across * across) / (2 * sigma * sigma)));
   }
   return o.relief * h;
+}
+
+// A grid of rings between vertex rings `outer` and `inner` (columns each), faces facing `up`
+// (+z) or down.
+void join_rings(const std::vector<int>& outer, const std::vector<int>& inner, bool up, reliefkit::TriMesh& mesh) {
+  const size_t n = outer.size();
+  for (size_t j = 0; j < n; ++j) {
+    const int a = outer[j], b = outer[(j + 1) % n], c = inner[j], d = inner[(j + 1) % n];
+    if (up) mesh.faces.push_back({a, b, d}), mesh.faces.push_back({a, d, c});
+    else mesh.faces.push_back({a, d, b}), mesh.faces.push_back({a, c, d});
+  }
+}
+
+// The ends of a closed seal (flat annuli from the wall's end rows in to the bore) and its bore (a
+// tube facing the axis), joined to the wall.
+void close_ends(const TurnedOptions& o, int rows, int columns, Turned& out) {
+  const double half = o.length / 2, dtheta = 2 * M_PI / columns;
+  auto ring = [&](double radius, double z) {
+    std::vector<int> r;
+    for (int j = 0; j < columns; ++j) {
+      r.push_back(out.mesh.n_vertices());
+      out.mesh.vertices.emplace_back(radius * std::cos(j * dtheta), radius * std::sin(j * dtheta), z);
+      out.relief.push_back(std::nan(""));
+    }
+    return r;
+  };
+  const int steps = std::max(1, int(std::lround((o.radius - o.bore_radius) / o.edge)));
+  std::vector<int> inner_end[2];
+  for (int end = 0; end < 2; ++end) {
+    const int row = end == 0 ? 0 : rows - 1;
+    const double z = end == 0 ? -half : half;
+    std::vector<int> previous(static_cast<size_t>(columns));
+    for (int j = 0; j < columns; ++j) previous[size_t(j)] = row * columns + j;
+    for (int k = 1; k <= steps; ++k) {
+      const std::vector<int> next = ring(o.radius - k * (o.radius - o.bore_radius) / steps, z);
+      join_rings(previous, next, end == 1, out.mesh);
+      previous = next;
+    }
+    inner_end[end] = previous;
+  }
+  const int bore_rows = std::max(1, int(std::lround(o.length / o.edge)));
+  std::vector<int> previous = inner_end[0];
+  for (int i = 1; i <= bore_rows; ++i) {
+    const std::vector<int> next = i == bore_rows ? inner_end[1] : ring(o.bore_radius, -half + i * o.length / bore_rows);
+    for (int j = 0; j < columns; ++j) {  // facing the axis: the wall's winding reversed
+      const int a = previous[size_t(j)], b = previous[size_t((j + 1) % columns)], c = next[size_t(j)], d = next[size_t((j + 1) % columns)];
+      out.mesh.faces.push_back({a, d, b}), out.mesh.faces.push_back({a, c, d});
+    }
+    previous = next;
+  }
 }
 
 }  // namespace
@@ -96,6 +185,8 @@ Turned make_turned(const TurnedOptions& o) {
       out.mesh.faces.push_back({a, b, d});
       out.mesh.faces.push_back({a, d, c});
     }
+  out.wall_faces = out.mesh.n_faces();
+  if (o.closed && o.shape == TurnedShape::cylinder) close_ends(o, rows, columns, out);
   out.middle_radius = profile_at(o, 0).rz.x();
   if (o.random_pose) {
     std::normal_distribution<double> gauss;

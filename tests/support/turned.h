@@ -20,7 +20,12 @@ struct TurnedOptions {
   double edge = 0.3;            // mean edge length
   double relief = 0.2;          // the design's height (negative: carved)
   bool band = false;            // a band round the middle (a fifth of the length) instead of the blobs
+  bool frieze = false;          // a seal's design instead: four standing figures facing right (arm raised
+                                // forwards: a mirror shows), a star between each two, a border line above
+                                // and below; lines 1.6 edge lengths wide, eased
   bool irregular = false;       // grid points moved by up to 30 % of a step
+  bool closed = false;          // a cylinder closed as a seal is: both ends flat, pierced along the axis by a bore
+  double bore_radius = 3;
   bool random_pose = true;
   unsigned seed = 1;
 };
@@ -28,7 +33,8 @@ struct TurnedOptions {
 struct Turned {
   reliefkit::TriMesh mesh;
   reliefkit::Vec3 axis_point = reliefkit::Vec3::Zero(), axis_direction = reliefkit::Vec3::UnitZ();
-  std::vector<double> relief;   // per vertex: its true height over the base, along the base's normal
+  std::vector<double> relief;   // per vertex: its true height over the base, along the base's normal (NaN off the wall)
+  int wall_faces = 0;           // the first faces: the outer wall; then the ends and the bore
   double middle_radius = 0;     // the base's radius halfway along its profile
 };
 

@@ -31,6 +31,15 @@ void check_params(const PlateParams& p, const std::vector<PlateCurves>& layers) 
 
 constexpr double kBarRoom = 12;         // below the drawing: the bar, its label and the scale beside it
 constexpr double kBarLeastWidth = 32;   // the bar (at most 0.4 of the width) and the scale beside it
+constexpr double kTitleLine = 4;        // a title's line above the drawing
+
+// The titles' room above the drawing and their width (DejaVu Sans: about 0.55 of the size per character).
+double title_room(const PlateParams& p) { return kTitleLine * double(p.titles.size()); }
+double title_width(const PlateParams& p) {
+  double w = 0;
+  for (size_t k = 0; k < p.titles.size(); ++k) w = std::max(w, 0.55 * (k == 0 ? 3.0 : 2.5) * double(p.titles[k].size()));
+  return w;
+}
 
 // The frame at `ratio` from the frame at 1:1.
 PageFrame at_ratio(PageFrame frame, double ratio) {
@@ -51,7 +60,8 @@ double automatic_ratio(const PageFrame& real, const PlateParams& p) {
 // The page: the content at its scale, the margins, the scale bar's room below; a fixed page when asked.
 void lay_out(Plate& plate, const Vec2& drawing_mm, const Vec2& content, const PlateParams& p) {
   plate.drawing_size_mm = drawing_mm;
-  const double need_w = std::max(content.x(), kBarLeastWidth) + 2 * p.margin_mm, need_h = content.y() + 2 * p.margin_mm + kBarRoom;
+  const double need_w = std::max({content.x(), kBarLeastWidth, title_width(p)}) + 2 * p.margin_mm,
+               need_h = content.y() + 2 * p.margin_mm + kBarRoom + title_room(p);
   plate.width_mm = p.page_width_mm > 0 ? p.page_width_mm : need_w;
   plate.height_mm = p.page_height_mm > 0 ? p.page_height_mm : need_h;
   if (plate.width_mm + 1e-9 < need_w || plate.height_mm + 1e-9 < need_h) {
@@ -62,7 +72,8 @@ void lay_out(Plate& plate, const Vec2& drawing_mm, const Vec2& content, const Pl
                   content.x(), content.y(), need_w, need_h, plate.width_mm, plate.height_mm);
     throw InputError(msg);
   }
-  plate.drawing_origin_mm = Vec2(0.5 * (plate.width_mm - content.x()), 0.5 * (plate.height_mm - kBarRoom - content.y()));
+  plate.drawing_origin_mm =
+      Vec2(0.5 * (plate.width_mm - content.x()), 0.5 * (plate.height_mm - kBarRoom - content.y() + title_room(p)));
 }
 
 // A round real length (1, 2 or 5 times a power of ten, in mm), the nearest (by ratio) to a quarter
@@ -91,6 +102,19 @@ void check_drawn(const Plate& plate, const PlateParams& p) {
   throw InputError("Every curve is hidden behind the surface from this view: choose another view (Facing the relief, or "
                    "the direction the curves are seen from).");
 }
+
+// The guides (a rollout's seam) dash-dot in the light pen over everything; the titles above the
+// drawing, the first larger, in the top margin.
+void add_guides_and_titles(Plate& plate, const PageFrame& frame, const PlateParams& p) {
+  for (const auto& line : p.guides) {
+    PlatePath path{{}, 0.25, "guides", true, false};
+    for (const Vec3& q : line) path.points.push_back(frame.to_mm(q) + plate.drawing_origin_mm);
+    if (path.points.size() >= 2) plate.paths.push_back(std::move(path));
+  }
+  const double x = plate.drawing_origin_mm.x() + 0.5 * plate.drawing_size_mm.x();
+  double y = plate.drawing_origin_mm.y() - 2 - kTitleLine * double(std::max<size_t>(p.titles.size(), 1) - 1);
+  for (size_t k = 0; k < p.titles.size(); ++k, y += kTitleLine) plate.texts.push_back(PlateText{Vec2(x, y), p.titles[k], k == 0 ? 3.0 : 2.5});
+}
 }  // namespace
 
 double standard_ratio(const std::function<Vec2(double)>& content_at, const PlateParams& p) {
@@ -103,7 +127,7 @@ double standard_ratio(const std::function<Vec2(double)>& content_at, const Plate
       throw InputError("The page is too small for its margins and the scale bar.");
   for (double ratio : kScales)
     for (const Vec2& page : pages) {
-      const Vec2 room = page - Vec2(2 * p.margin_mm, 2 * p.margin_mm + kBarRoom), need = content_at(ratio);
+      const Vec2 room = page - Vec2(2 * p.margin_mm, 2 * p.margin_mm + kBarRoom + title_room(p)), need = content_at(ratio);
       if (need.x() <= room.x() && need.y() <= room.y()) return ratio;
     }
   char msg[300];
@@ -153,6 +177,7 @@ Plate make_plate(const TriMesh& mesh, const std::vector<double>& grey, const std
   check_drawn(plate, params);
   for (auto& path : plate.paths)
     for (auto& q : path.points) q += plate.drawing_origin_mm;
+  add_guides_and_titles(plate, frame, params);
   if (params.progress) params.progress(80, "Plate: the section");
   add_section(plate, mesh, frame, params);
   add_scale_bar(plate, content_mm(frame, params).y());

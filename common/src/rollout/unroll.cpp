@@ -25,6 +25,14 @@ double wrapped(double angle) {
   return a <= -kPi ? a + 2 * kPi : a;
 }
 
+// A fitted axis' sign (the fit does not decide it): up the screen as MeshLab first shows the scan
+// (+y), or along +x when the axis lies nearly square to y, or +z — so the rollout stands as the
+// piece does on the screen.
+Vec3 upwards(const Vec3& d) {
+  const double along = std::abs(d.y()) >= 0.1 ? d.y() : std::abs(d.x()) >= 0.1 ? d.x() : d.z();
+  return along < 0 ? Vec3(-d) : d;
+}
+
 // The axis as asked: fitted (the vessel fit, which refuses what turns about no axis), +Z through
 // the origin (a mesh "Vessel Axis and Profile" oriented), or given.
 AxisLine axis_for(const Surface& surface, const UnrollParams& params, Rollout& out) {
@@ -41,7 +49,9 @@ AxisLine axis_for(const Surface& surface, const UnrollParams& params, Rollout& o
       break;
   }
   out.fit = fit_vessel_axis(surface, params.fit);
-  return out.fit->axis;
+  AxisLine a = out.fit->axis;
+  a.direction = upwards(a.direction);
+  return a;
 }
 
 // The direction angles are measured from: the scan's +x square to the axis (its +y when the axis
@@ -60,16 +70,25 @@ Vec2 radius_height(const Vec3& p, const AxisLine& axis) {
 }
 
 // The radius of the outer surface height by height: faces facing outwards (their normal within
-// 60 degrees of the radial direction; the other way round if most face inwards) binned by height
+// 60 degrees of the radial direction; the other way round for a mesh oriented inwards — see
+// outer_side) binned by height
 // (bins of 2 edges, at most 400), each bin's area-weighted median radius.
-std::vector<Vec2> median_radii(const TriMesh& mesh, const AxisLine& axis, double edge, double& bin) {
+// Which faces are the outer surface: +1 those facing away from the axis, -1 those facing it (a
+// mesh oriented inwards). Of two sides each with at least a quarter of the other's area (a wall
+// and its inside, a seal and its bore), the farther from the axis (mean radius); else the larger.
+double outer_side(double out_area, double out_radius, double in_area, double in_radius) {
+  if (out_area >= 0.25 * in_area && in_area >= 0.25 * out_area) return out_radius >= in_radius ? 1 : -1;
+  return out_area >= in_area ? 1 : -1;
+}
+
+std::vector<Vec2> median_radii(const TriMesh& mesh, const AxisLine& axis, double edge, double& bin, double& sign) {
   struct FaceRZ {
     Vec2 rz;
     double area, facing;
   };
   std::vector<FaceRZ> faces;
   faces.reserve(mesh.faces.size());
-  long outwards = 0, inwards = 0;
+  double out_area = 0, in_area = 0, out_radius = 0, in_radius = 0;
   double z_min = INFINITY, z_max = -INFINITY;
   for (const auto& t : mesh.faces) {
     const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
@@ -78,11 +97,12 @@ std::vector<Vec2> median_radii(const TriMesh& mesh, const AxisLine& axis, double
     const Vec3 radial = q - q.dot(axis.direction) * axis.direction;
     if (!(cross.norm() > 0) || !(radial.norm() > 0)) continue;
     const double facing = radial.normalized().dot(cross.normalized());
-    outwards += facing > 0.5, inwards += facing < -0.5;
     faces.push_back({radius_height(centre, axis), cross.norm() / 2, facing});
+    if (facing > 0.5) out_area += faces.back().area, out_radius += faces.back().area * faces.back().rz.x();
+    if (facing < -0.5) in_area += faces.back().area, in_radius += faces.back().area * faces.back().rz.x();
     z_min = std::min(z_min, faces.back().rz.y()), z_max = std::max(z_max, faces.back().rz.y());
   }
-  const double sign = outwards >= inwards ? 1 : -1;
+  sign = outer_side(out_area, out_radius / std::max(out_area, 1e-300), in_area, in_radius / std::max(in_area, 1e-300));
   bin = std::max(2 * edge, (z_max - z_min) / 400);
   const int bins = std::max(1, int(std::ceil((z_max - z_min) / bin)));
   std::vector<std::vector<std::pair<double, double>>> radii(static_cast<size_t>(bins));
@@ -169,14 +189,14 @@ std::vector<Vec2> smooth_profile(const std::vector<Vec2>& raw, double window) {
 }
 
 BaseProfile base_profile(const TriMesh& mesh, const AxisLine& axis, double edge, const UnrollParams& params) {
-  double bin = 0;
-  const std::vector<Vec2> raw = median_radii(mesh, axis, edge, bin);
+  double bin = 0, sign = 1;
+  const std::vector<Vec2> raw = median_radii(mesh, axis, edge, bin, sign);
   const double length = raw.back().y() - raw.front().y();
   const double window = params.base_window_edges > 0 ? params.base_window_edges * edge : std::max(20 * edge, length / 2);
   BaseProfile base;
   base.rz = params.base == BaseShape::straight ? straight_profile(raw) : smooth_profile(raw, window);
-  base.s.assign(base.rz.size(), 0);
-  for (size_t k = 1; k < base.rz.size(); ++k) base.s[k] = base.s[k - 1] + (base.rz[k] - base.rz[k - 1]).norm();
+  base.measure();
+  base.facing = sign;
   return base;
 }
 
@@ -188,6 +208,7 @@ void UnrollParams::validate() const {
     throw InputError("Axis direction (given) must be a finite, non-zero vector and Axis point (given) finite");
   if (seam_deg && !std::isfinite(*seam_deg)) throw InputError("Seam angle must be a number of degrees");
   if (!(base_window_edges >= 0 && base_window_edges <= 1e6)) throw InputError("Base window must be 0 (automatic) or a positive number of edge lengths");
+  if (!(repeat_share >= 0 && repeat_share <= 1)) throw InputError("Repeat past the seam must be a share of a turn between 0 and 1");
   fit.validate();
 }
 
@@ -237,23 +258,93 @@ double BaseProfile::slope_at(double arc_length) const {
   return b > a ? (at(b).x() - at(a).x()) / (b - a) : 0;
 }
 
-RolloutMap::RolloutMap(const AxisLine& axis, const Vec3& reference, BaseProfile base, double seam_angle, bool impression)
+namespace {
+// The isothermal coordinate gained along a straight piece of the profile from radius a to b over
+// `length`: the integral of ds / r with r linear in s.
+double isothermal_step(double a, double b, double length) {
+  return std::abs(b - a) > 1e-9 * std::max(a, b) ? length * std::log(b / a) / (b - a) : length / a;
+}
+}  // namespace
+
+void BaseProfile::measure() {
+  double largest = 0;
+  for (Vec2& q : rz) largest = std::max(largest, q.x());
+  for (Vec2& q : rz) q.x() = std::max(q.x(), 1e-3 * largest);
+  s.assign(rz.size(), 0);
+  u.assign(rz.size(), 0);
+  for (size_t k = 1; k < rz.size(); ++k) {
+    s[k] = s[k - 1] + (rz[k] - rz[k - 1]).norm();
+    u[k] = u[k - 1] + isothermal_step(rz[k - 1].x(), rz[k].x(), s[k] - s[k - 1]);
+  }
+}
+
+double BaseProfile::isothermal(double arc_length) const {
+  const double t = std::clamp(arc_length, 0.0, s.back());
+  const size_t k = std::min(size_t(std::upper_bound(s.begin(), s.end(), t) - s.begin()), s.size() - 1);
+  if (k == 0) return 0;
+  return u[k - 1] + isothermal_step(rz[k - 1].x(), at(t).x(), t - s[k - 1]);
+}
+
+namespace {
+// The conformal development's cone: on a cone, log r = log r0 + k u exactly (k its slope); on any
+// profile the least-squares k over the surface (weights r ds, 64 samples along the profile) keeps
+// the development's scale, r0 exp(k (u - u0)) / r, nearest to constant — a symmetric belly gets a
+// cylinder (straight parallels), a shoulder the cone that fits it.
+double conformal_cone_slope(const BaseProfile& base) {
+  constexpr int kSamples = 64;
+  double sw = 0, su = 0, sl = 0, suu = 0, sul = 0;
+  for (int k = 0; k < kSamples; ++k) {
+    const double s = base.s.back() * (k + 0.5) / kSamples, r = base.at(s).x(), u = base.isothermal(s), l = std::log(r);
+    sw += r, su += r * u, sl += r * l, suu += r * u * u, sul += r * u * l;
+  }
+  const double var = suu / sw - (su / sw) * (su / sw), cov = sul / sw - (su / sw) * (sl / sw);
+  return var > 0 ? cov / var : 0;
+}
+}  // namespace
+
+RolloutMap::RolloutMap(const AxisLine& axis, const Vec3& reference, BaseProfile base, double seam_angle, bool impression,
+                       Development development)
     : axis_(axis), u_(reference), v_(axis.direction.cross(reference)), base_(std::move(base)), seam_(seam_angle),
-      impression_(impression) {
+      impression_(impression), development_(development) {
   s0_ = base_.s.back() / 2;
   r0_ = base_.at(s0_).x();
-  const double slope = base_.slope_at(s0_);  // d radius / d arc length: the sine of the cone's half-angle
+  u0_ = base_.isothermal(s0_);
+  // The cone the development is exact on: d radius / d arc length, the sine of its half-angle.
+  const double slope = development_ == Development::conformal ? conformal_cone_slope(base_) : base_.slope_at(s0_);
   apex_ = std::abs(slope) > 1e-6 ? r0_ / slope : 0;
 }
 
-double RolloutMap::angle_of(const Vec3& p) const {
+RolloutMap::Local RolloutMap::local(const Vec3& p) const {
+  Local l;
   const Vec3 q = p - axis_.point;
-  return wrapped(std::atan2(q.dot(v_), q.dot(u_)) - seam_ - kPi);
+  l.azimuth = std::atan2(q.dot(v_), q.dot(u_));
+  const Vec2 rz = radius_height(p, axis_);
+  l.foot = base_.foot(rz);
+  l.height = (rz - l.foot.point).dot(l.foot.normal);
+  return l;
 }
 
-// The developed base: the parallel at `arc_length` on an arc of its true length about the common
-// centre, `angle` from the middle meridian. A cylinder (no centre): straight parallels.
+double RolloutMap::angle_from_azimuth(double azimuth) const { return wrapped(azimuth - seam_ - kPi); }
+
+double RolloutMap::angle_of(const Vec3& p) const {
+  const Vec3 q = p - axis_.point;
+  return angle_from_azimuth(std::atan2(q.dot(v_), q.dot(u_)));
+}
+
+// The developed base, `angle` from the middle meridian. Both developments put the parallels on
+// concentric arcs about the tangent cone's apex at the reference parallel (straight lines when it
+// is a cylinder), which makes them exact on cylinders and cones.
+// Conformal: the isothermal coordinates (u = the integral of ds / r, angle) mapped by the
+// exponential that develops that cone — radius apex * exp(k u), polar angle k * angle with
+// k = r0 / apex (a cylinder: x = r0 angle, y = r0 u).
+// Equal-area (generalized Bonne): the parallel at its true length on an arc at its arc length.
 Vec2 RolloutMap::develop(double angle, double arc_length) const {
+  if (development_ == Development::conformal) {
+    const double u = base_.isothermal(arc_length) - u0_;
+    if (apex_ == 0) return Vec2(r0_ * angle, r0_ * u);
+    const double k = r0_ / apex_, rho = apex_ * std::exp(k * u), beta = k * angle;
+    return Vec2(rho * std::sin(beta), rho * std::cos(beta) - apex_);
+  }
   const double r = base_.at(arc_length).x();
   if (apex_ == 0) return Vec2(angle * r, arc_length - s0_);
   const double rho = apex_ + (arc_length - s0_);
@@ -262,17 +353,29 @@ Vec2 RolloutMap::develop(double angle, double arc_length) const {
   return Vec2(rho * std::sin(beta), rho * std::cos(beta) - apex_);
 }
 
-RolloutMap::Point RolloutMap::map(const Vec3& p, int turns) const {
+Vec3 RolloutMap::on_sheet(double angle, double arc_length, double height) const {
+  const Vec2 xy = develop(angle, arc_length);
+  return impression_ ? Vec3(-xy.x(), xy.y(), -height) : Vec3(xy.x(), xy.y(), height);
+}
+
+RolloutMap::Point RolloutMap::place(const Local& l, int turns) const {
   Point out;
-  out.angle = angle_of(p) + 2 * kPi * turns;
-  const Vec2 rz = radius_height(p, axis_);
-  const BaseProfile::Foot f = base_.foot(rz);
-  const double height = (rz - f.point).dot(f.normal);
-  const Vec2 xy = develop(out.angle, f.s);
-  out.position = impression_ ? Vec3(-xy.x(), xy.y(), -height) : Vec3(xy.x(), xy.y(), height);
-  const double theta = out.angle + seam_ + kPi;
-  out.base_point = axis_.point + f.point.y() * axis_.direction + f.point.x() * (std::cos(theta) * u_ + std::sin(theta) * v_);
+  out.angle = angle_from_azimuth(l.azimuth) + 2 * kPi * turns;
+  out.position = on_sheet(out.angle, l.foot.s, l.height);
+  const Vec2 foot = l.foot.point;
+  out.base_point = axis_.point + foot.y() * axis_.direction + foot.x() * (std::cos(l.azimuth) * u_ + std::sin(l.azimuth) * v_);
   return out;
+}
+
+std::vector<Vec3> RolloutMap::meridian(double angle) const {
+  constexpr int kLeast = 64;  // samples along a straight base; a smooth one's every point besides
+  std::vector<double> along(base_.s);
+  for (int k = 0; k <= kLeast; ++k) along.push_back(base_.s.back() * k / kLeast);
+  std::sort(along.begin(), along.end());
+  along.erase(std::unique(along.begin(), along.end()), along.end());
+  std::vector<Vec3> line;
+  for (double s : along) line.push_back(on_sheet(angle, s, 0));
+  return line;
 }
 
 namespace {
@@ -280,13 +383,13 @@ namespace {
 // The seam's angle from the reference direction: the middle of the widest sector without faces
 // when there is one of at least 3 degrees (a sherd, an open piece); else the degree whose faces
 // rise least off the base (the rms height of its vertices, over three degrees).
-double automatic_seam(const TriMesh& mesh, const std::vector<double>& angle, const std::vector<double>& height, Rollout& out) {
+double automatic_seam(const std::vector<RolloutMap::Local>& local, Rollout& out) {
   constexpr int kBins = 360;
   std::vector<int> count(kBins, 0);
   std::vector<double> squares(kBins, 0);
-  for (size_t i = 0; i < mesh.vertices.size(); ++i) {
-    const int b = std::clamp(int((angle[i] + kPi) / (2 * kPi) * kBins), 0, kBins - 1);
-    ++count[size_t(b)], squares[size_t(b)] += height[i] * height[i];
+  for (size_t i = 0; i < local.size(); ++i) {
+    const int b = std::clamp(int((local[i].azimuth + kPi) / (2 * kPi) * kBins), 0, kBins - 1);
+    ++count[size_t(b)], squares[size_t(b)] += local[i].height * local[i].height;
   }
   int best_start = -1, best_length = 0;
   for (int start = 0; start < kBins; ++start) {
@@ -312,41 +415,66 @@ double automatic_seam(const TriMesh& mesh, const std::vector<double>& angle, con
   return (chosen + 0.5) / kBins * 2 * kPi - kPi;
 }
 
+// Copies of input vertices one turn on (past the seam), each made once: for the faces across the
+// seam and for the faces repeated past it. Their sheet positions are set with the others'.
+class TurnCopies {
+ public:
+  explicit TurnCopies(Rollout& out) : out_(out) {}
+  int of(int v) {
+    auto [it, added] = copy_.emplace(v, int(out_.source.size()));
+    if (added) out_.source.push_back(out_.source[size_t(v)]);
+    return it->second;
+  }
+
+ private:
+  Rollout& out_;
+  std::map<int, int> copy_;
+};
+
 // Faces across the seam: their vertices on the far side (angle below zero, the face reaching over
-// +pi) copied past the seam, so that the face lies whole on the sheet's +pi edge.
-void cut_seam(const std::vector<double>& angle, Rollout& out) {
-  std::map<int, int> copy;
-  for (auto& t : out.mesh.faces) {
+// +pi) copied past the seam, so that the face lies whole on the sheet's +pi edge. Then the faces
+// within `share` of a turn after the seam (the sheet's -pi edge) repeated past it, on copies.
+void cut_seam_and_repeat(const std::vector<double>& angle, double share, Rollout& out) {
+  TurnCopies copies(out);
+  const size_t faces = out.mesh.faces.size();
+  std::vector<char> across(faces, 0);
+  for (size_t f = 0; f < faces; ++f) {
+    auto& t = out.mesh.faces[f];
     double low = INFINITY, high = -INFINITY;
     for (int v : t) low = std::min(low, angle[size_t(v)]), high = std::max(high, angle[size_t(v)]);
     if (high - low <= kPi) continue;
-    for (int& v : t) {
-      if (angle[size_t(v)] >= 0) continue;
-      auto [it, added] = copy.emplace(v, int(out.mesh.vertices.size()));
-      if (added) {
-        out.copy_of.push_back(v);
-        const Vec3 p = out.mesh.vertices[size_t(v)];  // its sheet position is set with the others
-        out.mesh.vertices.push_back(p);
-      }
-      v = it->second;
-    }
+    across[f] = 1;
+    for (int& v : t)
+      if (angle[size_t(v)] < 0) v = copies.of(v);
   }
+  out.seam_copies = long(out.source.size()) - out.wall_vertices;
+  const double until = -kPi + 2 * kPi * share;
+  for (size_t f = 0; f < faces && share > 0; ++f) {
+    const auto t = out.mesh.faces[f];
+    if (across[f] || std::min({angle[size_t(t[0])], angle[size_t(t[1])], angle[size_t(t[2])]}) > until) continue;
+    out.mesh.faces.push_back({copies.of(t[0]), copies.of(t[1]), copies.of(t[2])});
+    ++out.repeated_faces;
+  }
+  out.mesh.vertices.resize(out.source.size(), Vec3::Zero());
 }
 
 // Each face edge's change of length from the base surface to the developed sheet (0.01: 1 %);
 // per vertex the mean over the edges of its faces.
+// The percentiles over the faces before the repeated ones (each face counted once).
 void measure_stretch(const std::vector<Vec3>& base_point, const std::vector<Vec3>& sheet, Rollout& out) {
   std::vector<double> edge_stretch;
-  edge_stretch.reserve(3 * out.mesh.faces.size());
+  const size_t counted = out.mesh.faces.size() - size_t(out.repeated_faces);
+  edge_stretch.reserve(3 * counted);
   std::vector<double> sum(out.mesh.vertices.size(), 0);
   std::vector<int> n(out.mesh.vertices.size(), 0);
-  for (const auto& t : out.mesh.faces)
+  for (size_t f = 0; f < out.mesh.faces.size(); ++f)
     for (int k = 0; k < 3; ++k) {
+      const auto& t = out.mesh.faces[f];
       const int a = t[size_t(k)], b = t[size_t((k + 1) % 3)];
       const double on_base = (base_point[size_t(a)] - base_point[size_t(b)]).norm();
       if (!(on_base > 0)) continue;
       const double change = std::abs((sheet[size_t(a)] - sheet[size_t(b)]).head<2>().norm() / on_base - 1);
-      edge_stretch.push_back(change);
+      if (f < counted) edge_stretch.push_back(change);
       sum[size_t(a)] += change, ++n[size_t(a)], sum[size_t(b)] += change, ++n[size_t(b)];
     }
   out.stretch.assign(out.mesh.vertices.size(), 0);
@@ -358,15 +486,71 @@ void measure_stretch(const std::vector<Vec3>& base_point, const std::vector<Vec3
   }
 }
 
+// The faces of the outer wall, where the decoration is: not those facing the axis (a seal's bore,
+// a pot's inside: the face's normal more than 120 degrees from the base's), nor those lying
+// deeper than a quarter of the radius under the base (the ends of a closed seal), nor those beyond
+// an end of the profile turned more than 60 degrees from it (an end's ring next to the rim).
+std::vector<char> outer_wall(const TriMesh& mesh, const std::vector<RolloutMap::Local>& local, const RolloutMap& map) {
+  const BaseProfile& base = map.base();
+  const Vec3 d = map.axis().direction;
+  const double deep = 0.25 * map.reference_radius(), end = base.s.back();
+  std::vector<char> keep(mesh.faces.size(), 1);
+#pragma omp parallel for schedule(static)
+  for (long f = 0; f < long(mesh.faces.size()); ++f) {
+    const auto& t = mesh.faces[size_t(f)];
+    const Vec3 &a = mesh.vertices[size_t(t[0])], &b = mesh.vertices[size_t(t[1])], &c = mesh.vertices[size_t(t[2])];
+    const Vec3 n = (b - a).cross(c - a), q = (a + b + c) / 3 - map.axis().point, radial = q - q.dot(d) * d;
+    if (!(n.norm() > 0) || !(radial.norm() > 0)) continue;
+    Vec2 foot_normal = Vec2::Zero();
+    double height = 0;
+    bool at_end = true;
+    for (int v : t) {
+      const RolloutMap::Local& l = local[size_t(v)];
+      foot_normal += l.foot.normal, height += l.height / 3;
+      at_end = at_end && (l.foot.s <= 0 || l.foot.s >= end);
+    }
+    const Vec3 outward = (foot_normal.x() * radial.normalized() + foot_normal.y() * d).normalized();
+    const double facing = base.facing * n.normalized().dot(outward);
+    keep[size_t(f)] = facing >= -0.5 && height >= -deep && !(at_end && facing < 0.5);
+  }
+  return keep;
+}
+
+// The input's vertices of the kept faces, in their order, as the rollout's first vertices; the
+// kept faces on them. The share of the surface's area left out is logged.
+void take_outer_wall(const TriMesh& mesh, const std::vector<char>& keep, Rollout& out) {
+  std::vector<int> index(mesh.vertices.size(), -1);
+  double kept = 0, total = 0;
+  for (size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& t = mesh.faces[f];
+    const double area = (mesh.vertices[size_t(t[1])] - mesh.vertices[size_t(t[0])]).cross(mesh.vertices[size_t(t[2])] - mesh.vertices[size_t(t[0])]).norm();
+    total += area;
+    if (!keep[f]) continue;
+    kept += area;
+    for (int v : t) index[size_t(v)] = 0;
+  }
+  for (size_t v = 0; v < mesh.vertices.size(); ++v)
+    if (index[v] == 0) index[v] = int(out.source.size()), out.source.push_back(int(v));
+  out.wall_vertices = long(out.source.size());
+  out.mesh.vertices.assign(out.source.size(), Vec3::Zero());
+  for (size_t f = 0; f < mesh.faces.size(); ++f)
+    if (keep[f]) {
+      const auto& t = mesh.faces[f];
+      out.mesh.faces.push_back({index[size_t(t[0])], index[size_t(t[1])], index[size_t(t[2])]});
+    }
+  out.left_out_faces = long(mesh.faces.size() - out.mesh.faces.size());
+  out.left_out_area_share = total > 0 ? 1 - kept / total : 0;
+}
+
 // Beyond this rms distance from the base (a share of its radius) a fitted axis is refused: the
 // shared scans' coin and ingot, which the vessel fit lets through, lie 40 % and 42 % off at
 // defaults; the tests' seal with figures 1 mm high on a 15 mm radius, well under 10 %.
 constexpr double kNotTurned = 0.1;
 
-void refuse_if_not_turned(Rollout& out, int input_vertices, AxisSource source) {
+void refuse_if_not_turned(Rollout& out, const std::vector<RolloutMap::Local>& local, AxisSource source) {
   double sum = 0;
-  for (int i = 0; i < input_vertices; ++i) sum += out.height[size_t(i)] * out.height[size_t(i)];
-  out.relief_rms = input_vertices > 0 ? std::sqrt(sum / input_vertices) : 0;
+  for (long i = 0; i < out.wall_vertices; ++i) sum += local[size_t(out.source[size_t(i)])].height * local[size_t(out.source[size_t(i)])].height;
+  out.relief_rms = out.wall_vertices > 0 ? std::sqrt(sum / double(out.wall_vertices)) : 0;
   const double radius = out.map->reference_radius();
   if (source != AxisSource::fitted || !(out.relief_rms > kNotTurned * radius)) return;
   char what[400];
@@ -390,32 +574,34 @@ Rollout unroll(const Surface& surface, const UnrollParams& params) {
   report(params.progress, 40, "Building the base");
   BaseProfile base = base_profile(mesh, axis, surface.scale().edge, params);
   const Vec3 reference = reference_direction(axis.direction);
-  // Angles and heights once with the seam at the reference direction, to place the seam.
-  double seam = 0;
-  if (params.seam_deg) {
-    seam = wrapped(*params.seam_deg / kDeg);
-  } else {
-    const RolloutMap probe(axis, reference, base, -kPi, false);  // angles measured from the reference direction
-    std::vector<double> angle(mesh.vertices.size()), height(mesh.vertices.size());
-    for (size_t i = 0; i < mesh.vertices.size(); ++i) {
-      const RolloutMap::Point p = probe.map(mesh.vertices[i]);
-      angle[i] = p.angle, height[i] = p.position.z();
-    }
-    seam = automatic_seam(mesh, angle, height, out);
+  // What does not depend on the seam, once per vertex: angle from the reference, foot, height.
+  std::vector<RolloutMap::Local> local(mesh.vertices.size());
+  {
+    const RolloutMap probe(axis, reference, base, 0, false, params.development);
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < long(mesh.vertices.size()); ++i) local[size_t(i)] = probe.local(mesh.vertices[size_t(i)]);
   }
+  report(params.progress, 50, "The outer wall");
+  {
+    const RolloutMap probe(axis, reference, base, 0, false, params.development);
+    take_outer_wall(mesh, outer_wall(mesh, local, probe), out);
+    out.map.emplace(probe);
+  }
+  refuse_if_not_turned(out, local, params.axis_source);
+  std::vector<RolloutMap::Local> wall_local(size_t(out.wall_vertices));
+  for (size_t i = 0; i < wall_local.size(); ++i) wall_local[i] = local[size_t(out.source[i])];
+  const double seam = params.seam_deg ? wrapped(*params.seam_deg / kDeg) : automatic_seam(wall_local, out);
   report(params.progress, 60, "Unrolling");
-  out.map.emplace(axis, reference, std::move(base), seam, params.impression);
+  out.map.emplace(axis, reference, std::move(base), seam, params.impression, params.development);
   const RolloutMap& map = *out.map;
-  out.mesh = mesh;
-  std::vector<double> angle(mesh.vertices.size());
-  for (size_t i = 0; i < mesh.vertices.size(); ++i) angle[i] = map.angle_of(mesh.vertices[i]);
-  cut_seam(angle, out);
+  std::vector<double> angle(wall_local.size());
+  for (size_t i = 0; i < wall_local.size(); ++i) angle[i] = map.angle_from_azimuth(wall_local[i].azimuth);
+  cut_seam_and_repeat(angle, params.repeat_share, out);
   std::vector<Vec3> sheet(out.mesh.vertices.size()), base_point(out.mesh.vertices.size());
   out.height.assign(out.mesh.vertices.size(), 0);
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < long(out.mesh.vertices.size()); ++i) {
-    const bool copy = size_t(i) >= mesh.vertices.size();
-    const RolloutMap::Point p = map.map(mesh.vertices[copy ? size_t(out.copy_of[size_t(i) - mesh.vertices.size()]) : size_t(i)], copy ? 1 : 0);
+    const RolloutMap::Point p = map.place(local[size_t(out.source[size_t(i)])], i >= out.wall_vertices ? 1 : 0);
     sheet[size_t(i)] = p.position, base_point[size_t(i)] = p.base_point, out.height[size_t(i)] = p.position.z();
   }
   report(params.progress, 85, "Measuring the stretch");
@@ -424,12 +610,40 @@ Rollout unroll(const Surface& surface, const UnrollParams& params) {
   if (params.impression)  // mirrored: each face turned back to face +Z, as the surface faced outwards
     for (auto& t : out.mesh.faces) std::swap(t[1], t[2]);
   out.width = 2 * kPi * map.reference_radius();
-  refuse_if_not_turned(out, mesh.n_vertices(), params.axis_source);
+  out.marks = SheetMarks{{map.meridian(-kPi), map.meridian(kPi)}, params.impression, out.width, map.reference_radius(),
+                         params.repeat_share};
   report(params.progress, 100, "Done");
   return out;
 }
 
-Polylines unroll_curves(const Polylines& curves, const RolloutMap& map) {
+namespace {
+
+// The segments within `share` of a turn after the seam, repeated one turn on (as the faces are).
+void repeat_curves(const Polylines& curves, const RolloutMap& map, const std::vector<RolloutMap::Point>& mapped, double share,
+                   Polylines& out) {
+  const double until = -kPi + 2 * kPi * share;
+  std::map<int, int> copy;
+  auto copy_of = [&](int k) {
+    auto [it, added] = copy.emplace(k, int(out.points.size()));
+    if (added) {
+      const double strength = out.strength[size_t(k)];
+      out.points.push_back(map.map(curves.points[size_t(k)], 1).position);
+      out.strength.push_back(strength);
+    }
+    return it->second;
+  };
+  const size_t segments = out.segments.size();
+  for (size_t k = 0; k < segments && share > 0; ++k) {
+    const auto seg = out.segments[k];
+    if (size_t(std::max(seg[0], seg[1])) >= mapped.size()) continue;  // a piece cut at the seam
+    const double a = mapped[size_t(seg[0])].angle, b = mapped[size_t(seg[1])].angle;
+    if (std::min(a, b) <= until && std::abs(a - b) <= kPi) out.segments.push_back({copy_of(seg[0]), copy_of(seg[1])});
+  }
+}
+
+}  // namespace
+
+Polylines unroll_curves(const Polylines& curves, const RolloutMap& map, double repeat_share) {
   Polylines out;
   std::vector<RolloutMap::Point> mapped(curves.points.size());
   for (size_t k = 0; k < curves.points.size(); ++k) mapped[k] = map.map(curves.points[k]);
@@ -453,6 +667,7 @@ Polylines unroll_curves(const Polylines& curves, const RolloutMap& map) {
     out.segments.push_back({high, at_high});
     out.segments.push_back({at_high + 1, low});
   }
+  repeat_curves(curves, map, mapped, repeat_share, out);
   return out;
 }
 
@@ -484,15 +699,18 @@ std::vector<std::string> rollout_log_lines(const Rollout& r) {
     std::snprintf(text, sizeof text, "Seam: at %.1f degrees, in the middle of the widest sector the piece does not cover (chosen).",
                   m.seam_angle() * kDeg);
   else if (r.seam_automatic)
-    std::snprintf(text, sizeof text, "Seam: at %.1f degrees, where the surface rises least off the base (rms %.3g; chosen); %zu vertices copied to cut the faces across it.",
-                  m.seam_angle() * kDeg, r.seam_relief, r.copy_of.size());
+    std::snprintf(text, sizeof text, "Seam: at %.1f degrees, where the surface rises least off the base (rms %.3g; chosen); %ld vertices copied to cut the faces across it.",
+                  m.seam_angle() * kDeg, r.seam_relief, r.seam_copies);
   else
-    std::snprintf(text, sizeof text, "Seam: at %.1f degrees (given); %zu vertices copied to cut the faces across it.", m.seam_angle() * kDeg,
-                  r.copy_of.size());
+    std::snprintf(text, sizeof text, "Seam: at %.1f degrees (given); %ld vertices copied to cut the faces across it.", m.seam_angle() * kDeg,
+                  r.seam_copies);
   lines.push_back(text);
+  const bool conformal = m.development() == Development::conformal;
   std::snprintf(text, sizeof text,
-                "Stretch of the development: median %.2f %%, 90th percentile %.2f %% of an edge's length (0 on cylinders and cones); "
+                "Development: %s; stretch median %.2f %%, 90th percentile %.2f %% of an edge's length (0 on cylinders and cones); "
                 "vertex quality = each vertex's stretch.",
+                conformal ? "conformal (shapes kept; on a rounded profile each height drawn at a scale that follows its radius)"
+                          : "equal-area (parallels at their true length; on a rounded profile the meridians shear away from the middle)",
                 100 * r.stretch_median, 100 * r.stretch_p90);
   lines.push_back(text);
   if (r.axis_source != AxisSource::fitted && r.relief_rms > kNotTurned * m.reference_radius()) {
@@ -502,8 +720,33 @@ std::vector<std::string> rollout_log_lines(const Rollout& r) {
                   r.relief_rms, 100 * r.relief_rms / m.reference_radius());
     lines.push_back(text);
   }
+  if (r.left_out_faces > 0) {
+    std::snprintf(text, sizeof text,
+                  "Left out: %ld faces (%.1f %% of the area) that are not the outer wall — facing the axis (a bore, an "
+                  "inside), deeper than a quarter of the radius, or turned from the wall beyond its ends (a closed piece's ends).",
+                  r.left_out_faces, 100 * r.left_out_area_share);
+    lines.push_back(text);
+  }
   if (r.impression)
     lines.push_back("Seal impression: the rollout mirrored and its relief inverted, as the seal prints it rolled over clay.");
+  if (r.repeated_faces > 0) {
+    std::snprintf(text, sizeof text, "Repeat: %.0f %% of a turn after the seam drawn again past it (%ld faces), as seal impressions overlap.",
+                  100 * r.marks.repeat_share, r.repeated_faces);
+    lines.push_back(text);
+  }
+  return lines;
+}
+
+std::vector<std::string> sheet_labels(const SheetMarks& marks, double unit_mm) {
+  char text[300];
+  std::vector<std::string> lines{marks.impression ? "Seal impression (rollout mirrored, relief inverted)" : "Rollout"};
+  std::snprintf(text, sizeof text, "circumference %.1f mm (radius %.1f mm); seam dash-dot", marks.circumference * unit_mm,
+                marks.reference_radius * unit_mm);
+  lines.push_back(text);
+  if (marks.repeat_share > 0) {
+    std::snprintf(text, sizeof text, "%.0f %% of a turn repeated past the seam", 100 * marks.repeat_share);
+    lines.push_back(text);
+  }
   return lines;
 }
 

@@ -155,9 +155,10 @@ TEST(PlateFilter, DamagedMeshesGiveAMessageOrAPlate) {
   });
 }
 
-// A layer a filter made (a relief from a drawing) has no file: the plate's default place is not
-// known, and the filter says what to do; with a full path it writes the plate.
-TEST(PlateFilter, ALayerWithoutAFileNeedsAFullPath) {
+// A layer a filter made (a relief from a drawing) has no file: the plate's default place is beside
+// the document's first file (here the script's input), named after the layer; a full path is
+// written where it says.
+TEST(PlateFilter, ALayerWithoutAFileGoesBesideTheDocumentsFile) {
   std::string relief = read_text(source_dir() + "/examples/drawing_relief.mlx");
   relief = relief.substr(relief.find("<filter"), relief.find("</filter>") + 9 - relief.find("<filter"));
   // The drawing in a folder of the test's own: the relief writes its interpretation file beside it.
@@ -166,8 +167,8 @@ TEST(PlateFilter, ALayerWithoutAFileNeedsAFullPath) {
   relief.replace(relief.find("examples/data"), 13, drawings);
   std::string dir;
   ServerRun run = run_filters("plate_no_file", reliefkit::TriMesh{}, {relief, plate("", 1, 0, "all", {1, 0, 0})}, {}, &dir);
-  EXPECT_FALSE(run.crashed) << run.output;
-  EXPECT_NE(run.output.find("has no file (a filter made it)"), std::string::npos) << run.output;
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(read_text(dir + "/nested_drawing-relief-plate.svg").find("<path"), std::string::npos) << run.output;
   const std::string svg = dir + "/relief.svg";
   run = run_filters("plate_full_path", reliefkit::TriMesh{}, {relief, plate(svg, 1, 0, "all", {1, 0, 0})}, {});
   ASSERT_EQ(run.status, 0) << run.output;

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <regex>
+#include <sstream>
 
 #include "bad_input.h"
 #include "mesh_files.h"
@@ -17,11 +19,12 @@ using reliefkit::Vec3;
 
 namespace {
 
-std::string unroll_filter(bool impression = false, int base = 1) {
+std::string unroll_filter(bool impression = false, int base = 1, double repeat = 0) {
   return mlx_filter("Unroll Around Axis",
                     {param_enum("axis_mode", 0, 3), param_point("axis_point", 0, 0, 0), param_point("axis_direction", 0, 0, 1),
-                     param_enum("base", base, 2), param_float("base_window", 0), param_bool("seam_auto", true),
-                     param_float("seam_angle", 0), param_bool("impression", impression), param_float("smoothing", 3)});
+                     param_enum("base", base, 2), param_enum("development", 0, 2), param_float("base_window", 0), param_bool("seam_auto", true),
+                     param_float("seam_angle", 0), param_bool("impression", impression), param_float("repeat", repeat),
+                     param_float("smoothing", 3)});
 }
 
 Turned seal() {
@@ -79,6 +82,45 @@ TEST(UnrollFilter, CurveLayersAreUnrolledWithTheMesh) {
     EXPECT_NEAR(p.y(), 0, 0.5);  // the middle parallel: a straight line across the sheet
   }
   EXPECT_NEAR(high - low, 2 * M_PI * 15, 0.02 * 2 * M_PI * 15);
+}
+
+// One script, as a seal scholar would run it: the impression with a quarter turn repeated, its
+// demarcating curves, its plate — to scale along the circumference, the seam dash-dot, the title.
+TEST(UnrollFilter, PlateOfTheImpressionShowsTheSeamTheRepeatAndItsName) {
+  const Turned t = seal();
+  const std::string curves = mlx_filter("Demarcating Curves", {param_float("threshold", 1), param_string("presmoothing", "auto"),
+                                                               param_float("min_length", 4), param_bool("per_vertex", true),
+                                                               param_bool("quality", false), param_float("lift", 0)});
+  const std::string plate = mlx_filter(
+      "Export Illustration Plate",
+      {param_save_file("file", "impression.svg", "*.svg"), param_bool("pdf", true), param_string("layers", "all"),
+       param_enum("view", 0, 4), param_point("direction", 0, 0, -1), param_float("unit_mm", 1), param_float("ratio", 0),
+       param_enum("shading", 0, 4), param_int("dpi", 100), param_float("width", 0.35), param_enum("weights", 0, 3),
+       param_enum("section", 0, 3), param_bool("section_fill", true), param_float("section_at", 0.5), param_enum("page", 0, 3)});
+  std::string dir;
+  const ServerRun run = run_filters("unroll_plate", t.mesh, {unroll_filter(true, 1, 0.25), curves, plate}, {}, &dir);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("Repeat: 25 % of a turn"), std::string::npos) << run.output;
+  std::ifstream f(dir + "/impression.svg");
+  std::stringstream svg;
+  svg << f.rdbuf();
+  const std::string text = svg.str();
+  ASSERT_FALSE(text.empty()) << run.output;
+  EXPECT_NE(text.find(">Seal impression (rollout mirrored, relief inverted)</text>"), std::string::npos);
+  EXPECT_NE(text.find("25 % of a turn repeated past the seam"), std::string::npos);
+  // The object's width on the plate's log: a circumference and a quarter (94.25 mm x 1.25).
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(run.output, m, std::regex("the object ([0-9.]+) x ([0-9.]+) mm"))) << run.output;
+  const double circumference = 2 * M_PI * 15;
+  EXPECT_NEAR(std::stod(m[1]), 1.25 * circumference, 0.02 * circumference);
+  // The two seam lines, dash-dot, a circumference apart on the page at the plate's scale.
+  ASSERT_TRUE(std::regex_search(run.output, m, std::regex("mm at ([0-9]+):([0-9]+)"))) << run.output;
+  const double ratio = std::stod(m[1]) / std::stod(m[2]);
+  const std::regex dashed(R"(<path stroke-width="[0-9.]+" stroke-dasharray="3 1 0.5 1" d="M([0-9.]+),)");
+  std::vector<double> xs;
+  for (std::sregex_iterator it(text.begin(), text.end(), dashed), end; it != end; ++it) xs.push_back(std::stod((*it)[1]));
+  ASSERT_EQ(xs.size(), 2u) << run.output;
+  EXPECT_NEAR(std::abs(xs[1] - xs[0]), ratio * circumference, 0.01 * ratio * circumference);
 }
 
 TEST(UnrollFilter, BadInputAndShapesThatTurnAboutNoAxis) {

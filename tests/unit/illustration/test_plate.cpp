@@ -298,3 +298,30 @@ TEST(Plate, AClosedMeshsSectionIsAFilledLoop) {
   p.section.fill = false;
   for (const auto& path : make_plate(sphere, {}, {square("above", 0, 0, 0.5, 2)}, PlateView{}, p).paths) EXPECT_FALSE(path.filled);
 }
+
+TEST(Plate, GuidesAreDrawnDashDotOverTheSurfaceAndTitlesAboveTheDrawing) {
+  PlateParams params;
+  params.ratio = 2;
+  // A guide under the block (hidden from above, drawn all the same) across the drawing at x = 1.
+  params.guides = {{Vec3(1, -10, -5), Vec3(1, 10, -5)}};
+  params.titles = {"Seal impression (rollout mirrored, relief inverted)", "second line"};
+  const Plate p = make_plate(block_relief(), {}, {square("top", 1, -1.5, 1, 2)}, PlateView{Vec3(0, 0, -1), Vec3(0, 1, 0)}, params);
+  const PlatePath* guide = nullptr;
+  for (const auto& path : p.paths)
+    if (path.layer == "guides") guide = &path;
+  ASSERT_NE(guide, nullptr);
+  EXPECT_TRUE(guide->dash_dot);
+  ASSERT_EQ(guide->points.size(), 2u);
+  for (const Vec2& q : guide->points) EXPECT_NEAR(q.x(), p.drawing_origin_mm.x() + 2 * (1 + 10), 1e-6);
+  EXPECT_NEAR(guide->points[1].y() - guide->points[0].y(), -40, 1e-6);  // the drawing's full height, y down
+  // The titles above the drawing, inside the page; the page 8 mm taller than without them.
+  ASSERT_EQ(p.texts.size(), 2u);
+  EXPECT_LT(p.texts[0].at.y(), p.texts[1].at.y());
+  EXPECT_LT(p.texts[1].at.y(), p.drawing_origin_mm.y());
+  EXPECT_GT(p.texts[0].at.y() - p.texts[0].size_mm, 0);
+  EXPECT_NEAR(p.height_mm, 72 + 8, 1e-6);
+  EXPECT_GT(p.width_mm, 0.55 * 3 * double(params.titles[0].size()));  // the long title fits the page
+  const std::string svg = plate_svg(p);
+  EXPECT_NE(svg.find("<g id=\"guides\""), std::string::npos);
+  EXPECT_NE(svg.find(">Seal impression (rollout mirrored, relief inverted)</text>"), std::string::npos);
+}

@@ -19,7 +19,7 @@ namespace {
 // Each face edge's length on the rollout against the input's, as a change (0.01 = 1 %).
 std::vector<double> edge_changes(const TriMesh& input, const Rollout& r) {
   const int n = input.n_vertices();
-  auto original = [&](int v) { return v < n ? v : r.copy_of[size_t(v - n)]; };
+  auto original = [&](int v) { return r.source[size_t(v)]; };
   std::vector<double> change;
   for (const auto& t : r.mesh.faces)
     for (int k = 0; k < 3; ++k) {
@@ -49,6 +49,8 @@ TEST(Unroll, EmbossedCylinderKeepsLengthsWidthAndHeights) {
   const Rollout r = unroll(Surface(t.mesh));
   ASSERT_TRUE(r.fit.has_value());
   EXPECT_GT(std::abs(r.map->axis().direction.dot(t.axis_direction)), std::cos(0.2 * M_PI / 180));
+  const Vec3 d = r.map->axis().direction;  // pointing up the screen as MeshLab shows the scan (+y)
+  if (std::abs(d.y()) >= 0.1) EXPECT_GT(d.y(), 0);
   EXPECT_NEAR(r.width, 2 * M_PI * o.radius, 0.01 * 2 * M_PI * o.radius);
   const std::vector<double> change = edge_changes(t.mesh, r);
   EXPECT_LT(percentile(change, 0.5), 0.005);
@@ -81,16 +83,50 @@ TEST(Unroll, ConeWithACarvedBandDevelopsWithoutStretch) {
   EXPECT_GT(height_slope(t, smooth), 0.9);
 }
 
-TEST(Unroll, GlobularBandReportsTheStretchItHas) {
+// Each face's angles on the rollout against the input's: the largest change per face (degrees).
+std::vector<double> angle_changes(const TriMesh& input, const Rollout& r) {
+  const int n = input.n_vertices();
+  auto original = [&](int v) { return r.source[size_t(v)]; };
+  auto angle_at = [](const Vec3& a, const Vec3& b, const Vec3& c) { return std::acos(std::clamp((b - a).normalized().dot((c - a).normalized()), -1.0, 1.0)); };
+  std::vector<double> change;
+  for (const auto& t : r.mesh.faces) {
+    double worst = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[size_t(k)], b = t[size_t((k + 1) % 3)], c = t[size_t((k + 2) % 3)];
+      const double before = angle_at(input.vertices[size_t(original(a))], input.vertices[size_t(original(b))], input.vertices[size_t(original(c))]);
+      const Vec3 flat_a(r.mesh.vertices[size_t(a)].x(), r.mesh.vertices[size_t(a)].y(), 0), flat_b(r.mesh.vertices[size_t(b)].x(), r.mesh.vertices[size_t(b)].y(), 0),
+          flat_c(r.mesh.vertices[size_t(c)].x(), r.mesh.vertices[size_t(c)].y(), 0);
+      worst = std::max(worst, std::abs(angle_at(flat_a, flat_b, flat_c) - before) * 180 / M_PI);
+    }
+    change.push_back(worst);
+  }
+  return change;
+}
+
+TEST(Unroll, GlobularBandReportsTheStretchItHasAndConformalKeepsShapes) {
   TurnedOptions o;
   o.shape = TurnedShape::globe, o.radius = 20, o.length = 24, o.relief = 0, o.seed = 2;
   const rktest::Turned t = rktest::make_turned(o);
-  const Rollout r = unroll(Surface(t.mesh));
-  const std::vector<double> change = edge_changes(t.mesh, r);
-  const double measured_median = percentile(change, 0.5), measured_p90 = percentile(change, 0.9);
-  EXPECT_GT(measured_p90, 0.01);  // a sphere's band cannot develop without stretch
-  EXPECT_NEAR(r.stretch_median, measured_median, 0.25 * measured_median + 0.002);
-  EXPECT_NEAR(r.stretch_p90, measured_p90, 0.25 * measured_p90 + 0.002);
+  for (Development d : {Development::conformal, Development::equal_area}) {
+    SCOPED_TRACE(int(d));
+    UnrollParams p;
+    p.development = d;
+    const Rollout r = unroll(Surface(t.mesh), p);
+    const std::vector<double> change = edge_changes(t.mesh, r);
+    const double measured_median = percentile(change, 0.5), measured_p90 = percentile(change, 0.9);
+    EXPECT_GT(measured_p90, 0.01);  // a sphere's band cannot develop without stretch
+    EXPECT_NEAR(r.stretch_median, measured_median, 0.25 * measured_median + 0.002);
+    EXPECT_NEAR(r.stretch_p90, measured_p90, 0.25 * measured_p90 + 0.002);
+    const std::vector<double> turn = angle_changes(t.mesh, r);
+    std::printf("%s: stretch median %.2f %%, p90 %.2f %%; angle change median %.3f, p90 %.3f degrees\n",
+                d == Development::conformal ? "conformal" : "equal-area", 100 * measured_median, 100 * measured_p90,
+                percentile(turn, 0.5), percentile(turn, 0.9));
+    if (d == Development::conformal) {
+      EXPECT_LT(percentile(turn, 0.9), 1.0);  // shapes kept: the faces' angles within the map's curvature over a face
+    } else {
+      EXPECT_GT(percentile(turn, 0.9), 5.0);  // sheared away from the middle meridian
+    }
+  }
 }
 
 TEST(Unroll, SealImpressionIsTheRolloutMirroredWithItsReliefInverted) {
@@ -164,4 +200,94 @@ TEST(Unroll, RefusesWhatTurnsAboutNoAxis) {
   UnrollParams bad;
   bad.axis_source = AxisSource::given, bad.given_axis.direction = Vec3::Zero();
   EXPECT_THROW(unroll(Surface(rktest::make_turned({}).mesh), bad), InputError);
+}
+
+TEST(Unroll, RepeatPastTheSeamContinuesTheSheetByTheShareAsked) {
+  TurnedOptions o;
+  o.seed = 6;
+  const rktest::Turned t = rktest::make_turned(o);
+  UnrollParams p;
+  p.base = BaseShape::straight;
+  p.seam_deg = 50;
+  const Rollout plain = unroll(Surface(t.mesh), p);
+  p.repeat_share = 0.25;
+  const Rollout repeated = unroll(Surface(t.mesh), p);
+  auto width = [](const TriMesh& m) {
+    double low = INFINITY, high = -INFINITY;
+    for (const Vec3& q : m.vertices) low = std::min(low, q.x()), high = std::max(high, q.x());
+    return high - low;
+  };
+  EXPECT_NEAR(width(plain.mesh), plain.width, 0.01 * plain.width);
+  EXPECT_NEAR(width(repeated.mesh), 1.25 * plain.width, 0.01 * plain.width);
+  EXPECT_NEAR(double(repeated.repeated_faces), 0.25 * double(plain.mesh.faces.size()), 0.03 * double(plain.mesh.faces.size()));
+  // Each repeated face is an input face one turn on (its points mapped a turn on; about a
+  // circumference along the sheet: the fitted base is a cone of slope ~1e-4), with its heights.
+  const size_t faces = repeated.mesh.faces.size() - size_t(repeated.repeated_faces), n = t.mesh.vertices.size();
+  for (size_t f = faces; f < repeated.mesh.faces.size(); ++f)
+    for (int v : repeated.mesh.faces[f]) {
+      ASSERT_GE(size_t(v), n);
+      const size_t original = size_t(repeated.source[size_t(v)]);
+      const Vec3 shift = repeated.mesh.vertices[size_t(v)] - repeated.mesh.vertices[original];
+      EXPECT_LT((repeated.mesh.vertices[size_t(v)] - repeated.map->map(t.mesh.vertices[original], 1).position).norm(), 1e-9);
+      EXPECT_NEAR(shift.x(), repeated.width, 1e-3 * repeated.width);
+      EXPECT_NEAR(shift.y(), 0, 1e-3 * repeated.width);
+      EXPECT_NEAR(repeated.height[size_t(v)], repeated.height[original], 1e-12);
+    }
+  // The stretch counts each face once; the input's vertices keep their places.
+  EXPECT_NEAR(repeated.stretch_p90, plain.stretch_p90, 1e-9);
+  for (size_t i = 0; i < n; ++i) ASSERT_EQ(repeated.mesh.vertices[i], plain.mesh.vertices[i]);
+  // The seam's lines: the sheet's two edges, a circumference apart on a cylinder.
+  ASSERT_EQ(repeated.marks.seams.size(), 2u);
+  for (size_t k = 0; k < repeated.marks.seams[0].size(); ++k)
+    EXPECT_NEAR(repeated.marks.seams[1][k].x() - repeated.marks.seams[0][k].x(), repeated.width, 1e-3 * repeated.width);
+  EXPECT_EQ(sheet_labels(repeated.marks, 1).size(), 3u);
+  EXPECT_NE(sheet_labels(repeated.marks, 1)[2].find("25 % of a turn"), std::string::npos);
+  // The curves repeat with the faces: the middle ring one and a quarter times round.
+  const Vec3 d = repeated.map->axis().direction;
+  const Polylines ring = plane_cut(t.mesh, d, t.axis_point.dot(d) + 0.37);
+  const Polylines once = unroll_curves(ring, *repeated.map), again = unroll_curves(ring, *repeated.map, 0.25);
+  EXPECT_NEAR(again.total_length(), 1.25 * once.total_length(), 0.02 * once.total_length());
+  EXPECT_THROW(unroll(Surface(t.mesh), [] { UnrollParams q; q.repeat_share = 1.5; return q; }()), InputError);
+}
+
+// A cylinder seal as it is scanned: closed at both ends and pierced by a bore. Only the outer
+// wall is unrolled; the ends and the bore are left out (and said), the rest as for the open tube.
+TEST(Unroll, AClosedPiercedSealUnrollsItsOuterWallOnly) {
+  TurnedOptions o;
+  o.closed = true, o.irregular = true, o.seed = 8, o.relief = -0.5, o.frieze = true;  // carved, as seals are
+  const rktest::Turned t = rktest::make_turned(o);
+  ASSERT_GT(t.mesh.n_faces(), t.wall_faces + 1000);
+  const Rollout r = unroll(Surface(t.mesh));
+  EXPECT_EQ(r.left_out_faces, t.mesh.n_faces() - t.wall_faces);
+  EXPECT_EQ(r.mesh.n_faces(), t.wall_faces);
+  double ends_and_bore = 0, total = 0;  // the generator's faces after the wall's
+  for (int f = 0; f < t.mesh.n_faces(); ++f) {
+    const auto& v = t.mesh.faces[size_t(f)];
+    const double area = (t.mesh.vertices[size_t(v[1])] - t.mesh.vertices[size_t(v[0])]).cross(t.mesh.vertices[size_t(v[2])] - t.mesh.vertices[size_t(v[0])]).norm();
+    total += area, ends_and_bore += f >= t.wall_faces ? area : 0;
+  }
+  EXPECT_NEAR(r.left_out_area_share, ends_and_bore / total, 1e-9);
+  EXPECT_NEAR(r.width, 2 * M_PI * o.radius, 0.01 * 2 * M_PI * o.radius);
+  double mx = 0, my = 0, sxy = 0, sxx = 0;
+  const double n = double(r.wall_vertices);
+  for (long i = 0; i < r.wall_vertices; ++i) {
+    const double truth = t.relief[size_t(r.source[size_t(i)])];
+    ASSERT_TRUE(std::isfinite(truth));  // a wall vertex
+    mx += truth / n, my += r.height[size_t(i)] / n;
+  }
+  for (long i = 0; i < r.wall_vertices; ++i) {
+    const double truth = t.relief[size_t(r.source[size_t(i)])];
+    sxy += (truth - mx) * (r.height[size_t(i)] - my), sxx += (truth - mx) * (truth - mx);
+  }
+  EXPECT_NEAR(sxy / sxx, 1.0, 0.03);
+  const std::vector<double> change = edge_changes(t.mesh, r);
+  EXPECT_LT(percentile(change, 0.5), 0.005);
+  EXPECT_LT(percentile(change, 0.9), 0.02);
+  // The input's vertices in their order: the sources of the wall's vertices increase.
+  for (long i = 1; i < r.wall_vertices; ++i) ASSERT_LT(r.source[size_t(i - 1)], r.source[size_t(i)]);
+  std::string log;
+  for (const std::string& line : rollout_log_lines(r)) log += line + "\n";
+  char said[80];
+  std::snprintf(said, sizeof said, "Left out: %ld faces (%.1f %%", r.left_out_faces, 100 * ends_and_bore / total);
+  EXPECT_NE(log.find(said), std::string::npos) << log;
 }

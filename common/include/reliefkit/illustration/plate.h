@@ -65,6 +65,8 @@ struct PlateParams {
   LineWeights weights = LineWeights::by_strength;
   PlateSection section;
   bool curves_required = true;  // false: a plate of the shading alone is allowed (a plain sherd's pottery plate)
+  std::vector<std::vector<Vec3>> guides;  // lines drawn dash-dot over the drawing, never hidden (a rollout's seam)
+  std::vector<std::string> titles;        // lines of text above the drawing (what the sheet is)
   Progress progress = nullptr;
 };
 
