@@ -2,15 +2,14 @@
 
 #include "curvature_filter.h"
 #include "demarcating_filters.h"
-#include "plate_filter.h"
 
 using namespace reliefkit::ml;
 
 namespace {
-enum FilterId { CURVATURE_TENSOR, DEMARCATING_CURVES, CURVATURE_SHADING, ILLUSTRATION_PLATE };
+enum FilterId { CURVATURE_TENSOR, DEMARCATING_CURVES, CURVATURE_SHADING };
 }
 
 ReliefKitDemarcatingPlugin::ReliefKitDemarcatingPlugin()
     : ReliefKitPlugin("ReliefKitDemarcating",
                       {curvature_tensor_filter(CURVATURE_TENSOR), demarcating_curves_filter(DEMARCATING_CURVES),
-                       curvature_shading_filter(CURVATURE_SHADING), illustration_plate_filter(ILLUSTRATION_PLATE)}) {}
+                       curvature_shading_filter(CURVATURE_SHADING)}) {}

@@ -34,9 +34,17 @@ if [ -f "$drawing" ]; then
   <Param type="RichString" value="all" name="layers"/>
   <Param type="RichEnum" value="1" enum_cardinality="3" name="view"/>
   <Param type="RichPoint3f" x="0" y="0" z="-1" name="direction"/>
+  <Param type="RichEnum" value="0" enum_cardinality="5" name="layout"/>
+  <Param type="RichBool" value="false" name="turn_over"/>
+  <Param type="RichBool" value="false" name="upside_down"/>
+  <Param type="RichString" value="" name="reverse_layer"/>
   <Param type="RichFloat" value="1" name="unit_mm"/>
   <Param type="RichFloat" value="0" name="ratio"/>
-  <Param type="RichEnum" value="2" enum_cardinality="4" name="shading"/>
+  <Param type="RichEnum" value="2" enum_cardinality="8" name="shading"/>
+  <Param type="RichFloat" value="315" name="light_azimuth"/>
+  <Param type="RichFloat" value="20" name="light_elevation"/>
+  <Param type="RichFloat" value="10" name="openness_radius"/>
+  <Param type="RichInt" value="0" name="light_stack"/>
   <Param type="RichInt" value="300" name="dpi"/>
   <Param type="RichFloat" value="0.35" name="width"/>
   <Param type="RichEnum" value="1" enum_cardinality="3" name="weights"/>

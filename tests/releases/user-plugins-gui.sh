@@ -25,8 +25,8 @@ rm -rf "$root$home"; mkdir -p "$root$home"
 chroot "$root" env HOME="$home" bash -c "cd $tree_in_root && cmake --build build-2025 --target install-user-plugins" | tail -1
 folder="$home/.local/share/VCG/MeshLab_64bit_fp/MeshLabExtraPlugins/2025.07"
 n="$(ls "$root$folder"/libfilter_reliefkit_*.so | wc -l)"
-[ "$n" -eq 7 ] && [ -d "$root$folder/reliefkit-bases" ] ||
-  { echo "FAIL: $n plugins in $folder (7 expected) or no reliefkit-bases beside them"; exit 1; }
+[ "$n" -eq 8 ] && [ -d "$root$folder/reliefkit-bases" ] ||
+  { echo "FAIL: $n plugins in $folder (8 expected) or no reliefkit-bases beside them"; exit 1; }
 
 display=":$((80 + RANDOM % 100))"
 Xvfb "$display" -screen 0 1280x900x24 -nolisten tcp >/dev/null 2>&1 &
@@ -51,7 +51,7 @@ pid="$(pgrep -f "^/usr/bin/meshlab $home" | head -1)"
 [ -n "$pid" ] || { echo "FAIL: MeshLab 2025.07 did not start"; exit 1; }
 mapped="$(grep -c "MeshLabExtraPlugins/2025.07/libfilter_reliefkit_" <(sort -u -k6 "/proc/$pid/maps" | awk '{print $6}' | sort -u) || true)"
 echo "MeshLab 2025.07 (pid $pid) mapped $mapped ReliefKit plugins from $folder"
-[ "$mapped" -eq 7 ] || { echo "FAIL: 7 expected"; exit 1; }
+[ "$mapped" -eq 8 ] || { echo "FAIL: 8 expected"; exit 1; }
 if xdotool search --name "Error while loading plugins" >/dev/null 2>&1; then
   import -window root "$shots/error.png"; [ -z "$pictures" ] || cp "$shots/error.png" "$pictures/meshlab2025_error.png"
   echo "FAIL: MeshLab 2025.07 refused plugins (its \"Error while loading plugins.\" window is open)"; exit 1

@@ -8,13 +8,6 @@
 namespace reliefkit {
 namespace {
 
-// The exterior as seen from +x (the piece's middle), up the axis; page right is +y.
-PlateView front_view() {
-  PlateView v;
-  v.direction = Vec3(-1, 0, 0);
-  v.up = Vec3(0, 0, 1);
-  return v;
-}
 
 // What the exterior view shows: for a piece with half its rim or more (a vessel), its right half
 // (y >= 0); for a sherd, the whole of it moved beside the axis (its least y to 0).
@@ -107,12 +100,21 @@ void add_pottery_marks(Plate& plate, const PotterySheet& sheet, const PageFrame&
 
 }  // namespace
 
+// The exterior as seen from +x (the piece's middle), up the axis; page right is +y.
+PlateView pottery_front_view() {
+  PlateView v;
+  v.direction = Vec3(-1, 0, 0);
+  v.up = Vec3(0, 0, 1);
+  v.name = "the pottery convention's exterior, from the piece's middle";
+  return v;
+}
+
 Plate make_pottery_plate(const TriMesh& oriented, const std::vector<double>& grey, const std::vector<PlateCurves>& layers,
                          const PotterySheet& sheet, const PlateParams& params) {
   if (sheet.section.empty() && sheet.lines.empty())
     throw InputError("The piece has no profile to draw: run \"Vessel Axis and Profile\" on it first.");
   const Exterior e = exterior_of(oriented, grey, layers, sheet.rim_share >= 0.5);
-  const PlateView view = front_view();
+  const PlateView view = pottery_front_view();
   const PageFrame real = page_frame(e.mesh, view, params.unit_mm);
   const double section_real_mm = widest(sheet) * params.unit_mm;
   PlateParams p = params;

@@ -46,6 +46,28 @@ void add_visible_paths(Plate& plate, const PlateCurves& layer, int layer_index, 
 /// drawing). Throws InputError when it fits at none down to 1:1000.
 double standard_ratio(const std::function<Vec2(double)>& content_at, const PlateParams& params);
 
+/// The frame at `ratio` (drawn / real) from the frame at 1:1.
+PageFrame at_ratio(PageFrame frame, double ratio);
+
+/// One view drawn at its frame's scale: the shading raster and the visible curves (millimetres
+/// from the view's top-left), the segments counted.
+struct ViewPanel {
+  cv::Mat shading;
+  std::vector<PlatePath> paths;
+  Vec2 size_mm{0, 0};
+  long visible = 0, hidden = 0, outside = 0;
+};
+ViewPanel render_view(const TriMesh& mesh, const std::vector<double>& grey, const std::vector<PlateCurves>& layers,
+                      const PageFrame& frame, const PlateParams& params);
+
+/// An empty page for content of this size: its size (fitted or fixed, InputError when too small)
+/// and the content's top-left (drawing_origin_mm), the margins, titles and the bar's room around it.
+Plate make_plate_page(const Vec2& content_mm, const PlateParams& params);
+
+/// The scale bar below the content: a round real length (1, 2 or 5 times a power of ten mm) near a
+/// quarter of the drawing's width; its label and the scale's.
+void add_scale_bar(Plate& plate, double content_height_mm);
+
 /// The room the section's profile takes beside the drawing (to the right, or below), in mm at
 /// the frame's scale; zero without a section.
 Vec2 section_room_mm(const PageFrame& frame, const PlateParams& params);

@@ -1,6 +1,7 @@
-// ReliefKit — the plate as SVG: millimetre units, the shading as an embedded PNG, one group of
-// paths per curve layer, the scale bar. See plate.h.
+// ReliefKit — the plate as SVG, written from its page description (page_marks): millimetre units,
+// the shading as an embedded PNG, one group per curve layer, the texts, the scale bar. See plate.h.
 #include <opencv2/imgcodecs.hpp>
+#include <cstdio>
 #include <sstream>
 
 #include "reliefkit/illustration/plate.h"
@@ -29,46 +30,38 @@ std::string escaped(const std::string& s) {
   return out;
 }
 
-void write_shading(std::ostringstream& svg, const Plate& p) {
+void write_shading(std::ostringstream& svg, const Plate& p, const PageMark& m) {
   std::vector<uchar> png;
   if (p.shading.empty() || !cv::imencode(".png", p.shading, png)) return;
-  svg << " <image x=\"" << p.drawing_origin_mm.x() << "\" y=\"" << p.drawing_origin_mm.y() << "\" width=\""
-      << p.drawing_size_mm.x() << "\" height=\"" << p.drawing_size_mm.y()
+  const Vec2 size = m.points[1] - m.points[0];
+  svg << " <image x=\"" << m.points[0].x() << "\" y=\"" << m.points[0].y() << "\" width=\"" << size.x() << "\" height=\"" << size.y()
       << "\" preserveAspectRatio=\"none\" href=\"data:image/png;base64," << base64(png) << "\"/>\n";
 }
 
-void write_paths(std::ostringstream& svg, const Plate& p) {
-  std::string layer = "\x01";
-  for (const auto& path : p.paths) {
-    if (path.layer != layer) {
-      if (layer != "\x01") svg << " </g>\n";
-      layer = path.layer;
-      svg << " <g id=\"" << escaped(layer) << "\" fill=\"none\" stroke=\"black\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
-    }
-    svg << "  <path stroke-width=\"" << path.width_mm << (path.dash_dot ? "\" stroke-dasharray=\"3 1 0.5 1" : "")
-        << (path.filled ? "\" fill=\"black" : "") << "\" d=\"M";
-    for (size_t k = 0; k < path.points.size(); ++k) svg << (k ? " " : "") << path.points[k].x() << ',' << path.points[k].y();
-    svg << (path.filled ? " Z" : "") << "\"/>\n";
+void write_path(std::ostringstream& svg, const PageMark& m) {
+  svg << "  <path stroke-width=\"" << m.width_mm;
+  if (!m.dashes.empty()) {
+    svg << "\" stroke-dasharray=\"";
+    char dash[32];
+    for (size_t k = 0; k < m.dashes.size(); ++k) std::snprintf(dash, sizeof dash, "%s%g", k ? " " : "", m.dashes[k]), svg << dash;
   }
-  if (layer != "\x01") svg << " </g>\n";
+  if (!m.round_caps) svg << "\" stroke-linecap=\"butt";
+  svg << (m.filled ? "\" fill=\"black" : "") << "\" d=\"M";
+  for (size_t k = 0; k < m.points.size(); ++k) svg << (k ? " " : "") << m.points[k].x() << ',' << m.points[k].y();
+  svg << (m.filled ? " Z" : "") << "\"/>\n";
 }
 
-void write_scale_bar(std::ostringstream& svg, const Plate& p) {
-  const double x = p.bar_start_mm.x(), y = p.bar_start_mm.y(), len = p.bar_length_mm;
-  svg << " <g id=\"scale bar\" stroke=\"black\" stroke-width=\"0.3\">\n"
-      << "  <line x1=\"" << x << "\" y1=\"" << y << "\" x2=\"" << x + len << "\" y2=\"" << y << "\"/>\n"
-      << "  <line x1=\"" << x << "\" y1=\"" << y - 1 << "\" x2=\"" << x << "\" y2=\"" << y + 1 << "\"/>\n"
-      << "  <line x1=\"" << x + len << "\" y1=\"" << y - 1 << "\" x2=\"" << x + len << "\" y2=\"" << y + 1 << "\"/>\n"
-      << " </g>\n"
-      << " <text x=\"" << x + 0.5 * len << "\" y=\"" << y + 4 << "\" font-family=\"DejaVu Sans, sans-serif\" font-size=\"3\" "
-      << "text-anchor=\"middle\">" << escaped(p.bar_label) << "</text>\n"
-      << " <text x=\"" << x + len + 4 << "\" y=\"" << y + 1.1
-      << "\" font-family=\"DejaVu Sans, sans-serif\" font-size=\"3\">" << escaped(p.scale_label) << "</text>\n";
+void write_text(std::ostringstream& svg, const PageMark& m) {
+  svg << "  <text x=\"" << m.points[0].x() << "\" y=\"" << m.points[0].y() << "\" font-size=\"" << m.size_mm << "\""
+      << (m.centred ? " text-anchor=\"middle\"" : "") << ">" << escaped(m.text) << "</text>\n";
 }
-void write_texts(std::ostringstream& svg, const Plate& p) {
-  for (const PlateText& t : p.texts)
-    svg << " <text x=\"" << t.at.x() << "\" y=\"" << t.at.y() << "\" font-family=\"DejaVu Sans, sans-serif\" font-size=\""
-        << t.size_mm << "\" text-anchor=\"middle\">" << escaped(t.text) << "</text>\n";
+
+// A group per run of marks of one group: the curve layers, the texts, the scale bar.
+void open_group(std::ostringstream& svg, const PageMark& m) {
+  if (m.kind == PageMark::Kind::text)
+    svg << " <g id=\"" << escaped(m.group) << "\" font-family=\"DejaVu Sans, sans-serif\" fill=\"black\">\n";
+  else
+    svg << " <g id=\"" << escaped(m.group) << "\" fill=\"none\" stroke=\"black\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
 }
 }  // namespace
 
@@ -80,10 +73,22 @@ std::string plate_svg(const Plate& p) {
       << "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" << p.width_mm << "mm\" height=\"" << p.height_mm
       << "mm\" viewBox=\"0 0 " << p.width_mm << ' ' << p.height_mm << "\">\n"
       << " <rect x=\"0\" y=\"0\" width=\"" << p.width_mm << "\" height=\"" << p.height_mm << "\" fill=\"white\"/>\n";
-  write_shading(svg, p);
-  write_paths(svg, p);
-  write_texts(svg, p);
-  write_scale_bar(svg, p);
+  std::string group;
+  bool open = false;
+  for (const PageMark& m : page_marks(p)) {
+    if (m.kind == PageMark::Kind::shading) {
+      write_shading(svg, p, m);
+      continue;
+    }
+    if (!open || m.group != group) {
+      if (open) svg << " </g>\n";
+      open_group(svg, m);
+      group = m.group, open = true;
+    }
+    if (m.kind == PageMark::Kind::path) write_path(svg, m);
+    else write_text(svg, m);
+  }
+  if (open) svg << " </g>\n";
   svg << "</svg>\n";
   return svg.str();
 }

@@ -94,8 +94,10 @@ TEST(UnrollFilter, PlateOfTheImpressionShowsTheSeamTheRepeatAndItsName) {
   const std::string plate = mlx_filter(
       "Export Illustration Plate",
       {param_save_file("file", "impression.svg", "*.svg"), param_bool("pdf", true), param_string("layers", "all"),
-       param_enum("view", 0, 4), param_point("direction", 0, 0, -1), param_float("unit_mm", 1), param_float("ratio", 0),
-       param_enum("shading", 0, 4), param_int("dpi", 100), param_float("width", 0.35), param_enum("weights", 0, 3),
+       param_enum("view", 0, 4), param_point("direction", 0, 0, -1), param_enum("layout", 0, 5), param_bool("turn_over", false),
+       param_bool("upside_down", false), param_string("reverse_layer", ""), param_float("unit_mm", 1), param_float("ratio", 0),
+       param_enum("shading", 0, 8), param_float("light_azimuth", 315), param_float("light_elevation", 20),
+       param_float("openness_radius", 10), param_int("light_stack", 0), param_int("dpi", 100), param_float("width", 0.35), param_enum("weights", 0, 3),
        param_enum("section", 0, 3), param_bool("section_fill", true), param_float("section_at", 0.5), param_enum("page", 0, 3)});
   std::string dir;
   const ServerRun run = run_filters("unroll_plate", t.mesh, {unroll_filter(true, 1, 0.25), curves, plate}, {}, &dir);
@@ -116,7 +118,7 @@ TEST(UnrollFilter, PlateOfTheImpressionShowsTheSeamTheRepeatAndItsName) {
   // The two seam lines, dash-dot, a circumference apart on the page at the plate's scale.
   ASSERT_TRUE(std::regex_search(run.output, m, std::regex("mm at ([0-9]+):([0-9]+)"))) << run.output;
   const double ratio = std::stod(m[1]) / std::stod(m[2]);
-  const std::regex dashed(R"(<path stroke-width="[0-9.]+" stroke-dasharray="3 1 0.5 1" d="M([0-9.]+),)");
+  const std::regex dashed(R"(<path stroke-width="[0-9.]+" stroke-dasharray="3 1 0.5 1"[^>]* d="M([0-9.]+),)");
   std::vector<double> xs;
   for (std::sregex_iterator it(text.begin(), text.end(), dashed), end; it != end; ++it) xs.push_back(std::stod((*it)[1]));
   ASSERT_EQ(xs.size(), 2u) << run.output;

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <Eigen/Geometry>
 #include <opencv2/imgcodecs.hpp>
 
 #include "reliefkit/illustration/plate.h"
@@ -324,4 +325,220 @@ TEST(Plate, GuidesAreDrawnDashDotOverTheSurfaceAndTitlesAboveTheDrawing) {
   const std::string svg = plate_svg(p);
   EXPECT_NE(svg.find("<g id=\"guides\""), std::string::npos);
   EXPECT_NE(svg.find(">Seal impression (rollout mirrored, relief inverted)</text>"), std::string::npos);
+}
+
+// An object that is not a relief — an ellipsoid 3 : 1.6 : 1 like a figurine — is drawn facing its
+// widest side (looking along its shortest axis), upright: the scan's y up unless its longest axis
+// lies more than 70 degrees from it (a scan lying on its side), then that axis; a coin-like disc
+// is faced as a relief.
+TEST(Plate, TheDefaultViewDrawsAnObjectUprightAndAReliefFacing) {
+  auto ellipsoid = [](const Mat3& turn) {
+    TriMesh m = rktest::sphere(1, 4);
+    for (Vec3& p : m.vertices) p = turn * Vec3(1.6 * p.x(), 3 * p.y(), p.z());  // long along y, short along z
+    return m;
+  };
+  // Lying 80 degrees from the scan's y (in the xy plane): up is its long axis.
+  const Mat3 lying = Eigen::AngleAxisd(80 * M_PI / 180, Vec3::UnitZ()).toRotationMatrix();
+  PlateView v = default_view(ellipsoid(lying));
+  const Vec3 longest = lying * Vec3::UnitY(), shortest = lying * Vec3::UnitZ();
+  EXPECT_GT(std::abs(v.up.normalized().dot(longest)), 0.999) << v.name;
+  EXPECT_GT(std::abs(v.direction.normalized().dot(shortest)), 0.999);
+  EXPECT_LT(v.direction.z(), 0);  // from +z, as MeshLab looks first
+  EXPECT_NE(v.name.find("upright"), std::string::npos);
+  // Leaning 60 degrees off y (as the shared fertility statue is, 61): the scan's y is kept up.
+  v = default_view(ellipsoid(Eigen::AngleAxisd(M_PI / 3, Vec3::UnitZ()).toRotationMatrix()));
+  EXPECT_NEAR(v.up.y(), 1, 1e-12);
+  EXPECT_NE(v.name.find("as scanned"), std::string::npos);
+  // A flat disc (thickness a tenth of its diameter) stays a relief: faced, y up.
+  TriMesh disc = rktest::sphere(1, 4);
+  for (Vec3& p : disc.vertices) p.z() *= 0.1;
+  v = default_view(disc);
+  EXPECT_NE(v.name.find("facing the relief"), std::string::npos) << v.name;
+  EXPECT_NEAR(std::abs(v.direction.z()), 1, 1e-6);
+}
+
+namespace {
+// The columns [first, last] of the non-paper pixels in the rows [top, bottom) and the columns
+// [left, right) of a raster (-1: none).
+std::pair<int, int> inked_columns(const cv::Mat& grey, int top, int bottom, int left = 0, int right = 1 << 30) {
+  int first = -1, last = -1;
+  for (int y = std::max(top, 0); y < std::min(bottom, grey.rows); ++y)
+    for (int x = std::max(left, 0); x < std::min(right, grey.cols); ++x)
+      if (grey.at<uchar>(y, x) < 255) first = first < 0 ? x : std::min(first, x), last = std::max(last, x);
+  return {first, last};
+}
+}  // namespace
+
+// A tablet — an ellipsoid 4 wide, 6 high, 1.6 thick, turned 80 degrees in the scan's xy plane so
+// that its up is not the scan's — drawn as the fat cross: each view looks along the direction its
+// name says, the views share one scale and the ones in a column line up within a pixel.
+TEST(PlateLayout, ATabletIsDrawnAsTheFatCrossAtOneScale) {
+  const Mat3 turn = Eigen::AngleAxisd(80 * M_PI / 180, Vec3::UnitZ()).toRotationMatrix();
+  TriMesh tablet = rktest::sphere(1, 4);
+  for (Vec3& p : tablet.vertices) p = turn * Vec3(2 * p.x(), 3 * p.y(), 0.8 * p.z());
+  const ObjectFrame f = object_frame(tablet);
+  const Vec3 width = turn * Vec3::UnitX(), height = turn * Vec3::UnitY(), thickness = turn * Vec3::UnitZ();
+  EXPECT_GT(std::abs(f.front.dot(thickness)), 0.999) << f.how;
+  EXPECT_GT(f.up.dot(height), 0.999);  // its long axis up, pointing up the scan's y
+  const std::vector<LayoutView> views = layout_views(PlateLayout::tablet, f);
+  ASSERT_EQ(views.size(), 6u);
+  auto named = [&](const std::string& name) {
+    for (const LayoutView& v : views)
+      if (v.name == name) return v;
+    ADD_FAILURE() << "no view " << name;
+    return LayoutView{};
+  };
+  EXPECT_GT(named("obverse").view.direction.dot(-f.front), 0.999);
+  EXPECT_GT(named("reverse").view.direction.dot(f.front), 0.999);
+  EXPECT_GT(named("reverse").view.up.dot(-f.up), 0.999);  // turned about the horizontal axis
+  EXPECT_GT(named("top edge").view.direction.dot(-f.up), 0.999);
+  EXPECT_GT(named("bottom edge").view.direction.dot(f.up), 0.999);
+  EXPECT_GT(std::abs(named("left edge").view.direction.dot(width)), 0.999);
+  EXPECT_LT(named("left edge").view.direction.dot(named("right edge").view.direction), -0.999);
+  PlateParams params;
+  params.ratio = 10, params.curves_required = false;
+  const Plate p = make_layout_plate(tablet, {}, {}, PlateLayout::tablet, f, params);
+  ASSERT_EQ(p.texts.size(), 6u);
+  EXPECT_EQ(p.texts[2].text, "obverse");
+  // The grid at 10:1: columns 16, 40, 16 mm wide, rows 16, 60, 16, 60 mm high, 6 mm apart.
+  EXPECT_NEAR(p.drawing_size_mm.x(), 16 + 40 + 16 + 2 * 6, 0.5);
+  EXPECT_NEAR(p.drawing_size_mm.y(), 16 + 60 + 16 + 60 + 4 * 6, 0.5);
+  const double px = 300 / 25.4;
+  const auto top = inked_columns(p.shading, 0, int(16 * px)), obverse = inked_columns(p.shading, int(22 * px), int(82 * px), int(19 * px), int(65 * px)),
+             reverse = inked_columns(p.shading, int(110 * px), int(170 * px));
+  std::printf("columns: top edge %d-%d, obverse %d-%d, reverse %d-%d px\n", top.first, top.second, obverse.first, obverse.second,
+              reverse.first, reverse.second);
+  EXPECT_NEAR(obverse.first, 22 * px, 2);  // the obverse 40 mm wide at 10:1, in the middle column
+  EXPECT_NEAR(obverse.second - obverse.first, 40 * px, 3);
+  EXPECT_NEAR(top.first, obverse.first, 1);
+  EXPECT_NEAR(top.second, obverse.second, 1);
+  EXPECT_NEAR(reverse.first, obverse.first, 1);
+  EXPECT_NEAR(reverse.second, obverse.second, 1);
+  EXPECT_EQ(p.scale_label, "10:1");
+}
+
+// Two faces from two meshes, a lithic and a figurine from one: the views' names and directions.
+TEST(PlateLayout, LithicFigurineAndTwoFacesNameTheirViews) {
+  const ObjectFrame f;  // front +z, up +y
+  const auto lithic = layout_views(PlateLayout::lithic, f), figurine = layout_views(PlateLayout::figurine, f),
+             faces = layout_views(PlateLayout::two_faces, f);
+  ASSERT_EQ(lithic.size(), 3u);
+  EXPECT_EQ(lithic[1].name, "right profile");
+  EXPECT_GT(lithic[1].view.direction.dot(-Vec3::UnitX()), 0.999);  // the dorsal view's right side turned to the viewer
+  EXPECT_GT(lithic[2].view.direction.dot(Vec3::UnitZ()), 0.999);   // ventral: from behind
+  ASSERT_EQ(figurine.size(), 3u);
+  EXPECT_EQ(figurine[1].name, "right side");
+  EXPECT_GT(figurine[1].view.direction.dot(Vec3::UnitX()), 0.999);  // the figure's right is the viewer's left
+  ASSERT_EQ(faces.size(), 2u);
+  EXPECT_GT(faces[1].view.up.dot(Vec3::UnitY()), 0.999);  // the reverse turned about the vertical axis
+  TriMesh coin = rktest::sphere(1, 3);
+  for (Vec3& q : coin.vertices) q.z() *= 0.1;
+  TriMesh other = coin;
+  for (Vec3& q : other.vertices) q.x() += 5;
+  const std::vector<double> none;
+  const std::vector<PlateCurves> no_curves;
+  PlateParams params;
+  params.curves_required = false, params.ratio = 10;
+  const Plate p = make_panels_plate({PlatePanel{&coin, &none, &no_curves, {"obverse", default_view(coin), 0, 0}},
+                                     PlatePanel{&other, &none, &no_curves, {"reverse", default_view(other), 1, 0}}},
+                                    params);
+  EXPECT_NEAR(p.drawing_size_mm.x(), 20 + 6 + 20, 0.5);
+  EXPECT_THROW(make_panels_plate({}, params), InputError);
+}
+
+// The headless shadings on surfaces of known shape (issue 44).
+TEST(PlateShading, RakingAndMultiDirectionalLightOnAPlane) {
+  const TriMesh plane = rktest::height_field([](double, double) { return 0.0; }, 5, 20);
+  const Surface surface(plane);
+  const PlateView from_above;  // looking along -z, y up
+  PlateShadingParams p;
+  p.elevation_deg = 20;
+  for (double g : plate_shading(surface, from_above, p)) ASSERT_NEAR(g, 0.65, 1e-9);  // a face square to the view
+  p.kind = PlateShadingKind::multi_directional;
+  for (double g : plate_shading(surface, from_above, p)) ASSERT_NEAR(g, 0.9, 1e-9);
+  // Tilted 15 degrees (under the raking light's 20: none is hidden): multi-directional light the same
+  // whichever way it tilts, 0.9 cos^3 15; raking light from the top darker when it turns away.
+  for (double sign : {1.0, -1.0}) {
+    const TriMesh tilted = rktest::height_field([&](double, double y) { return sign * y * std::tan(M_PI / 12); }, 5, 20);
+    p.kind = PlateShadingKind::multi_directional;
+    EXPECT_NEAR(plate_shading(Surface(tilted), from_above, p)[0], 0.9 * std::pow(std::cos(M_PI / 12), 3), 1e-6);
+    p.kind = PlateShadingKind::raking, p.azimuth_deg = 0;  // from the top of the page (+y)
+    const double g = plate_shading(Surface(tilted), from_above, p)[0];
+    if (sign > 0) EXPECT_LT(g, 0.65);  // rising towards +y: turned away from a light at +y
+    else EXPECT_GT(g, 0.65);
+  }
+  p.azimuth_deg = 315;
+  // From the top left: the light's direction has its left and up components equal.
+  const Vec3 l = light_direction(from_above, 315, 45);
+  EXPECT_NEAR(l.x(), -0.5, 1e-12);
+  EXPECT_NEAR(l.y(), 0.5, 1e-12);
+  EXPECT_NEAR(l.z(), std::sqrt(0.5), 1e-12);
+  p.elevation_deg = 0;
+  EXPECT_THROW(plate_shading(surface, from_above, p), InputError);
+}
+
+TEST(PlateShading, OpennessIsOneAllOverASphereAndDarkensTowardsAGroovesFloor) {
+  const Surface sphere(rktest::sphere(10, 4));
+  PlateShadingParams p;
+  p.kind = PlateShadingKind::openness;
+  double low = 1, high = 0;
+  for (double g : plate_shading(sphere, PlateView{}, p)) low = std::min(low, g), high = std::max(high, g);
+  std::printf("sphere: openness %.4f to %.4f\n", low, high);
+  EXPECT_GT(low, 0.98);
+  // A groove 2 deep and about 2 wide along y: the sky closes in towards its floor.
+  const TriMesh groove = rktest::height_field([](double x, double) { return -2 * std::exp(-x * x / 2); }, 8, 80);
+  p.radius_edges = 20;  // 4 units: the groove's walls within reach of its floor
+  const std::vector<double> g = plate_shading(Surface(groove), PlateView{}, p);
+  auto at = [&](double x) {  // the vertex nearest (x, 0)
+    size_t best = 0;
+    for (size_t i = 0; i < groove.vertices.size(); ++i)
+      if ((groove.vertices[i] - Vec3(x, 0, groove.vertices[i].z())).norm() < (groove.vertices[best] - Vec3(x, 0, groove.vertices[best].z())).norm()) best = i;
+    return g[best];
+  };
+  std::printf("groove: openness at the floor %.3f, on its wall %.3f, outside %.3f\n", at(0), at(1.5), at(5));
+  EXPECT_LT(at(0), at(1.5) - 0.05);
+  EXPECT_LT(at(1.5), at(5));
+  EXPECT_GT(at(5), 0.97);
+}
+
+TEST(PlateShading, RadianceScalingBrightensCrestsAndDarkensTroughs) {
+  // Waves z = 0.5 cos(x): crests at x = 0 (convex seen from above), troughs at x = pi.
+  const TriMesh waves = rktest::height_field([](double x, double) { return 0.5 * std::cos(x); }, 6, 120);
+  const Surface surface(waves);
+  PlateShadingParams p;
+  p.kind = PlateShadingKind::radiance_scaling;
+  const std::vector<double> scaled = plate_shading(surface, PlateView{}, p);
+  p.strength = 0;
+  const std::vector<double> plain = plate_shading(surface, PlateView{}, p);
+  auto near_x = [&](double x) {
+    double sum_ratio = 0;
+    int n = 0;
+    for (size_t i = 0; i < waves.vertices.size(); ++i)
+      if (std::abs(waves.vertices[i].x() - x) < 0.05 && std::abs(waves.vertices[i].y()) < 4) sum_ratio += scaled[i] / plain[i], ++n;
+    return sum_ratio / n;
+  };
+  std::printf("radiance scaling / plain light: crest %.3f, trough %.3f\n", near_x(0), near_x(M_PI));
+  EXPECT_GT(near_x(0), 1.1);
+  EXPECT_LT(near_x(M_PI), 0.9);
+}
+
+TEST(PlateShading, TheLightStackAndItsLpFile) {
+  const TriMesh relief = block_relief();
+  const Surface surface(relief);
+  PlateParams params;
+  params.dpi = 50;
+  const LightStack stack = light_stack(surface, PlateView{}, params, 1, 8, 30);
+  ASSERT_EQ(stack.images.size(), 8u);
+  ASSERT_EQ(stack.directions.size(), 8u);
+  for (size_t k = 0; k < 8; ++k) {
+    EXPECT_NEAR(stack.directions[k].norm(), 1, 1e-12);
+    EXPECT_NEAR(stack.directions[k].z(), std::sin(30 * M_PI / 180), 1e-9);  // towards the viewer
+    const double azimuth = std::atan2(stack.directions[k].x(), stack.directions[k].y()) * 180 / M_PI;  // clockwise from up
+    EXPECT_NEAR(std::remainder(azimuth - 45.0 * k, 360), 0, 1e-6);
+  }
+  EXPECT_EQ(stack.images[0].cols, stack.images[4].cols);
+  const std::string lp = lp_file({"a.png", "b.png"}, {stack.directions[0], stack.directions[2]});
+  EXPECT_EQ(lp.substr(0, 2), "2\n");
+  EXPECT_NE(lp.find("a.png 0.000000 0.866025 0.500000\n"), std::string::npos) << lp;
+  EXPECT_NE(lp.find("b.png 0.866025 "), std::string::npos) << lp;
 }

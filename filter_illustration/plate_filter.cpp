@@ -5,11 +5,14 @@
 #include <cmath>
 
 #include <QElapsedTimer>
+#include <QFontMetricsF>
 #include <QFile>
 #include <QFileInfo>
 #include <QPainter>
 #include <QPainterPath>
 #include <QPdfWriter>
+#include <opencv2/imgcodecs.hpp>
+#include <optional>
 
 #include "mesh_bridge.h"
 #include "params.h"
@@ -33,11 +36,17 @@ const char* kPlateInfo =
     "from the top left. <b>Mesh unit</b>: how many millimetres one unit of the scan is (1 for scans "
     "in mm); the log gives the object's size at that unit — check it.";
 
-const QStringList kViews{"Facing the relief (its least extent)", "From +Z (MeshLab's default view)", "Given direction",
+const QStringList kViews{"Automatic (a relief faced; an object upright, facing its widest side)", "From +Z (MeshLab's default view)",
+                         "Given direction",
                          "Pottery (a vessel or sherd on its axis: Vessel Axis and Profile first)"};
 constexpr int kPotteryView = 3;
+const QStringList kLayouts{"One view", "Tablet (fat cross: obverse, reverse and the four edges)",
+                           "Lithic (dorsal face, right profile, ventral face)", "Two faces (obverse, reverse)",
+                           "Figurine (front, right side, back)"};
 const QStringList kShadings{"Automatic (vertex colours if any, else light)", "Vertex colours", "Light from the top left",
-                            "None (white paper)"};
+                            "None (white paper)", "Raking light", "Multi-directional light", "Openness (ambient occlusion)",
+                            "Radiance scaling"};
+constexpr int kFirstCoreShading = 4;  // the rest are rendered by the core from the view
 const QStringList kPages{"Fit the drawing", "A4 portrait", "A4 landscape"};
 const QStringList kWeights{"By curve strength (three weights)", "By layer (the first heaviest)", "One weight"};
 const QStringList kSections{"None", "Vertical (profile to the right)", "Horizontal (profile below)"};
@@ -49,18 +58,51 @@ void plate_parameters(const MeshModel&, RichParameterList& par) {
   par.addParam(RichBool("pdf", true, "Also as PDF", "Writes the same page as a PDF beside the SVG."));
   par.addParam(RichString("layers", "all", "Curve layers",
                           "\"all\": every layer of curves; or the names of the layers to draw, separated by ';'."));
-  par.addParam(RichEnum("view", 0, kViews, "View", "Facing the relief: along its least extent, from the side its "
-                                                   "normals face (a coin, a plaque, a sherd's exterior). Pottery: a "
+  par.addParam(RichEnum("view", 0, kViews, "View", "Automatic: a relief (a coin, a plaque, a sherd: its least extent "
+                                                   "under a third of the others) faced along its least extent, from "
+                                                   "the side its normals face; any other object (a figurine, a bust, "
+                                                   "a tablet) upright — the scan's up kept, its largest extent up when "
+                                                   "it lies on its side — facing its widest side. Pottery: a "
                                                    "vessel or sherd turned onto its axis by Vessel Axis and Profile, "
                                                    "drawn in half-section (axis dash-dot, the section filled on the "
                                                    "left, the exterior on the right, the rim line, the rim diameter "
                                                    "and its preserved share; at 1:1 or reduced)."));
   par.addParam(RichDirection("direction", vcg::Point3f(0, 0, -1), "View direction (given)", "Looking along this direction."));
+  par.addParam(RichEnum("layout", 0, kLayouts, "Layout",
+                        "Several views of the object on one sheet, at one scale, each named, one scale bar: a cuneiform "
+                        "tablet as the fat cross (obverse in the middle, the edges beside the faces they join, the "
+                        "reverse below, turned as tablets are turned); a stone tool's dorsal face, right profile and "
+                        "ventral face along its long axis; a coin's or seal's two faces; a figurine's front, right side "
+                        "and back. The object's front is its widest side (least extent), its up the scan's up (its "
+                        "largest extent when it lies on its side): adjust with the two switches below. One view: as View says."));
+  par.addParam(RichBool("turn_over", false, "Turn over (layouts)", "The front drawn is the other side (the reverse "
+                                                                    "as obverse, the ventral face as dorsal)."));
+  par.addParam(RichBool("upside_down", false, "Upside down (layouts)", "Up is down: the object turned in the page."));
+  par.addParam(RichString("reverse_layer", "", "Reverse layer (two faces)",
+                          "For Two faces: the layer holding the reverse when the two faces were scanned apart; empty: "
+                          "the back of this mesh."));
   par.addParam(RichFloat("unit_mm", 1.0f, "Mesh unit (mm)", "Millimetres per unit of the mesh: 1 for a scan in mm, 10 for cm, 25.4 for inches."));
   par.addParam(RichFloat("ratio", 0.0f, "Scale (drawn / real, 0: auto)",
                          "1 for 1:1, 2 for 2:1, 0.5 for 1:2. 0: automatic, the largest standard scale (5:1, 2:1, 1:1, "
                          "1:2...) at which the plate fits the page (A4 when the page fits the drawing)."));
-  par.addParam(RichEnum("shading", 0, kShadings, "Shading", "The grey under the lines."));
+  par.addParam(RichEnum("shading", 0, kShadings, "Shading",
+                        "The grey under the lines: the vertex colours (Prominent Coloring, Curvature Shading), light from "
+                        "the top left, white paper, or rendered here from the view, headless: raking light (low, from the "
+                        "azimuth and elevation below: strokes and tool marks stand out), multi-directional light (lights "
+                        "all round at 45 degrees, averaged: a slope shading, no direction favoured), openness (the share of the sky "
+                        "each point sees within the radius below: grooves and incisions dark, as LiDAR archaeologists "
+                        "read surfaces), radiance scaling (light from the top left, convex parts brightened and concave "
+                        "parts darkened by the curvature, after MeshLab's on-screen mode)."));
+  par.addParam(RichFloat("light_azimuth", 315.0f, "Light azimuth (degrees)",
+                         "Where raking light comes from: degrees clockwise from the top of the page (315: the top left)."));
+  par.addParam(RichFloat("light_elevation", 20.0f, "Light elevation (degrees)",
+                         "Of raking light and the light stack, above the surface seen from the view (10-30 rakes)."));
+  par.addParam(RichFloat("openness_radius", 10.0f, "Openness radius (edge lengths)",
+                         "How far round each point the surface may hide its sky (openness)."));
+  par.addParam(RichInt("light_stack", 0, "Light stack (images)",
+                       "0: none. Else that many images of the surface lit by raking light from directions evenly round "
+                       "(at the elevation above), written beside the plate with the .lp file that RTI viewers (RTIBuilder, "
+                       "Relight) read."));
   par.addParam(RichInt("dpi", 300, "Shading resolution (dpi)", "Of the shading raster on the page (the lines are vectors)."));
   par.addParam(RichFloat("width", 0.35f, "Line width (mm)", "Of the curves (a technical pen's 0.35 mm by default)."));
   par.addParam(RichEnum("weights", 0, kWeights, "Line weights",
@@ -107,7 +149,7 @@ std::vector<double> shading_of(MeshModel& m, const View& view, int choice) {
   const bool colours = m.hasDataMask(MeshModel::MM_VERTCOLOR);
   if (choice == 1 && !colours) throw InputError("The mesh has no vertex colours: run Prominent Coloring or Curvature Shading first, or choose the light.");
   if (choice == 3) return std::vector<double>(view.mesh.vertices.size(), 1.0);
-  if (choice == 2 || !colours) return {};
+  if (choice == 2 || choice >= kFirstCoreShading || !colours) return {};
   std::vector<double> grey(view.mesh.vertices.size());
   for_each_vertex(view, [&](int i, const CVertexO* v) {
     const auto& c = v->cC();
@@ -117,6 +159,18 @@ std::vector<double> shading_of(MeshModel& m, const View& view, int choice) {
 }
 
 void write_pdf(const Plate& plate, const QString& path);
+
+// The core's shading asked for (choices from kFirstCoreShading), or none.
+std::optional<PlateShadingParams> core_shading(FilterCall& call) {
+  const int choice = read_enum(call, "shading", "Shading", kShadings.size());
+  if (choice < kFirstCoreShading) return std::nullopt;
+  PlateShadingParams s;
+  s.kind = PlateShadingKind(choice - kFirstCoreShading);
+  s.azimuth_deg = read_float(call, "light_azimuth", "Light azimuth (degrees)", -3600, 3600);
+  s.elevation_deg = read_float(call, "light_elevation", "Light elevation (degrees)", 0.01, 90);
+  s.radius_edges = read_float(call, "openness_radius", "Openness radius (edge lengths)", 0.01, 1000);
+  return s;
+}
 
 PlateParams plate_params(FilterCall& call) {
   PlateParams p;
@@ -159,7 +213,10 @@ void mark_rollout(FilterCall& call, PlateParams& p) {
 PlateView plate_view(FilterCall& call, const View& view) {
   PlateView v;
   const int view_choice = read_enum(call, "view", "View", kViews.size());
-  if (view_choice == 0 && !sheet_marks_of(call.mesh())) v = facing_view(view.mesh);  // a rollout: the default, from +Z
+  if (view_choice == 0 && !sheet_marks_of(call.mesh())) v = default_view(view.mesh);  // a rollout: the default, from +Z
+  if (view_choice == 0 && sheet_marks_of(call.mesh())) v.name = "facing the rollout";
+  if (view_choice == 1) v.name = "from +Z";
+  if (view_choice == 2) v.name = "along the direction given";
   if (view_choice == 2) {
     const vcg::Point3f d = call.params.getPoint3m("direction");
     v.direction = Vec3(d[0], d[1], d[2]);
@@ -200,12 +257,67 @@ QString size_text(const Plate& plate, double unit_mm) {
   return QString("the object %1 x %2 mm at %3 mm per unit").arg(s.x(), 0, 'g', 4).arg(s.y(), 0, 'g', 4).arg(unit_mm);
 }
 
-// A size no object drawn for a report has (over 1 m, under 5 mm) is most likely a wrong unit.
-void warn_of_unit(FilterCall& call, const Plate& plate, double unit_mm) {
-  const double size = std::max(plate.real_size_mm.x(), plate.real_size_mm.y());
-  if (size <= 1000 && size >= 5) return;
-  call.log("Warning: " + size_text(plate, unit_mm) + ": if that is not its size, the scan is not in that unit — set Mesh "
-           "unit (mm) to the scan's unit (the plate's scale and scale bar assume it).");
+// The curve layers drawn on `m`: those derived from it (<mesh> – …), or all when none is.
+std::vector<PlateCurves> curves_of_mesh(const MeshModel& m, const std::vector<PlateCurves>& layers) {
+  const std::string prefix = derived_label(m, "").toStdString();
+  std::vector<PlateCurves> own;
+  for (const PlateCurves& l : layers)
+    if (l.name.rfind(prefix, 0) == 0) own.push_back(l);
+  return own.empty() ? layers : own;
+}
+
+// A layout's plate: the views of this mesh, or for Two faces with a reverse layer, each face's.
+Plate layout_plate(FilterCall& call, View& view, const std::vector<double>& grey, const std::vector<PlateCurves>& layers,
+                   PlateLayout layout, const PlateParams& p, const std::optional<PlateShadingParams>& core, PlateView& main_view) {
+  const ObjectFrame frame = object_frame(view.mesh, read_bool(call, "turn_over", "Turn over (layouts)"),
+                                         read_bool(call, "upside_down", "Upside down (layouts)"));
+  const QString reverse_name = call.params.getString("reverse_layer").trimmed();
+  if (layout != PlateLayout::two_faces || reverse_name.isEmpty()) {
+    QStringList names;
+    for (const LayoutView& v : layout_views(layout, frame)) names << QString::fromStdString(v.name);
+    call.log(QString::fromStdString("Plate layout: " + frame.how + "; views: ") + names.join(", ") + ".");
+    main_view = layout_views(layout, frame).front().view;
+    for (const LayoutView& v : layout_views(layout, frame))
+      if (v.view.direction.dot(-frame.front) > 0.999) main_view = v.view;  // the obverse, dorsal or front
+    return make_layout_plate(view.mesh, grey, layers, layout, frame, p, core ? &*core : nullptr);
+  }
+  MeshModel* reverse = nullptr;
+  for (MeshModel* m : document_layers(call.doc))
+    if (m->label() == reverse_name) reverse = m;
+  if (!reverse || reverse == &call.mesh())
+    throw InputError(qUtf8Printable("Two faces: no other layer is called \"" + reverse_name + "\" (the reverse's layer; "
+                                    "leave it empty to draw the back of this mesh)."));
+  View back = view_of(*reverse, call.log);
+  std::vector<double> back_grey = shading_of(*reverse, back, read_enum(call, "shading", "Shading", kShadings.size()));
+  const std::vector<PlateCurves> front_curves = curves_of_mesh(call.mesh(), layers), back_curves = curves_of_mesh(*reverse, layers);
+  LayoutView obverse{"obverse", default_view(view.mesh), 0, 0}, other{"reverse", default_view(back.mesh), 1, 0};
+  main_view = obverse.view;
+  std::vector<double> front_grey = grey;
+  if (core) front_grey = plate_shading(surface_of(view), obverse.view, *core), back_grey = plate_shading(surface_of(back), other.view, *core);
+  call.log("Plate layout: two faces from two layers, \"" + call.mesh().label() + "\" (obverse) and \"" + reverse_name +
+           "\" (reverse), each " + QString::fromStdString(obverse.view.name) + ".");
+  return make_panels_plate({PlatePanel{&view.mesh, &front_grey, &front_curves, obverse}, PlatePanel{&back.mesh, &back_grey, &back_curves, other}}, p);
+}
+
+// The light stack asked for: its images and .lp file beside the plate (<plate>-light-01.png ...).
+void write_light_stack(FilterCall& call, View& view, const PlateView& main_view, const PlateParams& p, double ratio, const QString& svg) {
+  const int count = read_int(call, "light_stack", "Light stack (images)", 0, 360);
+  if (count == 0) return;
+  const LightStack stack = light_stack(surface_of(view), main_view, p, ratio, count,
+                                       read_float(call, "light_elevation", "Light elevation (degrees)", 0.01, 90));
+  const QString base = QFileInfo(svg).path() + "/" + QFileInfo(svg).completeBaseName();
+  std::vector<std::string> names;
+  for (size_t k = 0; k < stack.images.size(); ++k) {
+    const QString name = QFileInfo(base).fileName() + QString("-light-%1.png").arg(k + 1, 2, 10, QChar('0'));
+    if (!cv::imwrite((QFileInfo(svg).path() + "/" + name).toStdString(), stack.images[k]))
+      throw InputError(qUtf8Printable("The light stack's image " + name + " could not be written."));
+    names.push_back(name.toStdString());
+  }
+  QFile lp(base + ".lp");
+  if (!lp.open(QIODevice::WriteOnly) || lp.write(QByteArray::fromStdString(lp_file(names, stack.directions))) < 0)
+    throw InputError(qUtf8Printable("The light stack's file " + base + ".lp could not be written."));
+  call.log(QString("Light stack: %1 images lit from %2 directions round at %3 degrees, and %4.lp, beside the plate.")
+               .arg(count).arg(count).arg(read_float(call, "light_elevation", "Light elevation (degrees)", 0.01, 90)).arg(base));
 }
 
 void apply_plate(FilterCall& call) {
@@ -217,15 +329,26 @@ void apply_plate(FilterCall& call) {
   const double width = read_float(call, "width", "Line width (mm)", 0.01, 10);
   p.section.width_mm = width * 0.5 / 0.35;  // the profile in the heavy pen
   std::vector<PlateCurves> layers = curve_layers(call, call.params.getString("layers"), width);
-  const std::vector<double> grey = shading_of(call.mesh(), view, read_enum(call, "shading", "Shading", kShadings.size()));
+  std::vector<double> grey = shading_of(call.mesh(), view, read_enum(call, "shading", "Shading", kShadings.size()));
+  const std::optional<PlateShadingParams> core = core_shading(call);
   Plate plate;
+  PlateView main_view;  // the view the light stack is taken from
+  const auto layout = PlateLayout(read_enum(call, "layout", "Layout", kLayouts.size()));
   if (read_enum(call, "view", "View", kViews.size()) == kPotteryView) {
+    main_view = pottery_front_view();
+    if (core) grey = plate_shading(surface_of(view), main_view, *core);
     plate = pottery_plate(call, view, grey, layers, p);
+  } else if (layout != PlateLayout::one_view) {
+    plate = layout_plate(call, view, grey, layers, layout, p, core, main_view);
   } else {
     mark_rollout(call, p);
-    plate = make_plate(view.mesh, grey, layers, plate_view(call, view), p);
+    main_view = plate_view(call, view);
+    call.log(QString::fromStdString("Plate view: " + main_view.name + "."));
+    if (core) grey = plate_shading(surface_of(view), main_view, *core);
+    plate = make_plate(view.mesh, grey, layers, main_view, p);
   }
   const QString svg = write_svg(call, plate);
+  write_light_stack(call, view, main_view, p, plate.ratio, svg);
   QString pdf;
   if (read_bool(call, "pdf", "Also as PDF")) write_pdf(plate, pdf = QFileInfo(svg).path() + "/" + QFileInfo(svg).completeBaseName() + ".pdf");
   call.log(QString("Illustration plate: %1 x %2 mm at %3%4, %5 curve layer(s), %6 paths (%7 segments visible, %8 hidden)%9; "
@@ -238,10 +361,38 @@ void apply_plate(FilterCall& call) {
                .arg(plate.section_segments > 0 ? QString(", a section of %1 segments").arg(plate.section_segments) : QString())
                .arg(size_text(plate, p.unit_mm)).arg(QString::fromStdString(plate.bar_label)).arg(svg)
                .arg(pdf.isEmpty() ? QString() : " and " + pdf).arg(timer.elapsed() / 1000.0, 0, 'f', 2));
-  warn_of_unit(call, plate, p.unit_mm);
+  for (const std::string& warning : plate_warnings(plate, p.unit_mm)) call.log(QString::fromStdString(warning));
 }
 
-// The same page through QPainter: millimetres mapped to the PDF's points.
+// The page description (the same the SVG is written from) through QPainter, in millimetres.
+void draw_mark(QPainter& painter, const Plate& plate, const PageMark& m) {
+  if (m.kind == PageMark::Kind::shading) {
+    const QImage shading(plate.shading.data, plate.shading.cols, plate.shading.rows, int(plate.shading.step), QImage::Format_Grayscale8);
+    painter.drawImage(QRectF(QPointF(m.points[0].x(), m.points[0].y()), QPointF(m.points[1].x(), m.points[1].y())), shading);
+  } else if (m.kind == PageMark::Kind::path) {
+    QPainterPath line(QPointF(m.points[0].x(), m.points[0].y()));
+    for (size_t i = 1; i < m.points.size(); ++i) line.lineTo(m.points[i].x(), m.points[i].y());
+    if (m.filled) line.closeSubpath(), painter.fillPath(line, Qt::black);
+    QPen pen(Qt::black, m.width_mm, Qt::SolidLine, m.round_caps ? Qt::RoundCap : Qt::FlatCap, Qt::RoundJoin);
+    if (!m.dashes.empty()) {  // Qt's dashes are in pen widths
+      QVector<qreal> dashes;
+      for (double d : m.dashes) dashes << d / m.width_mm;
+      pen.setDashPattern(dashes);
+    }
+    painter.setPen(pen);
+    painter.drawPath(line);
+  } else {
+    QFont font("DejaVu Sans");
+    font.setPixelSize(std::max(1, int(std::lround(m.size_mm))));
+    painter.setFont(font);
+    painter.setPen(QPen(Qt::black));
+    const QString text = QString::fromStdString(m.text);
+    const double shift = m.centred ? 0.5 * QFontMetricsF(font).horizontalAdvance(text) : 0;
+    painter.drawText(QPointF(m.points[0].x() - shift, m.points[0].y()), text);
+  }
+}
+
+// The plate as a PDF: the page description drawn with millimetres mapped to the PDF's points.
 void write_pdf(const Plate& plate, const QString& path) {
   QPdfWriter pdf(path);
   pdf.setPageSize(QPageSize(QSizeF(plate.width_mm, plate.height_mm), QPageSize::Millimeter));
@@ -249,36 +400,8 @@ void write_pdf(const Plate& plate, const QString& path) {
   pdf.setResolution(1200);
   QPainter painter;
   if (!painter.begin(&pdf)) throw InputError(qUtf8Printable("The PDF could not be written to " + path + "."));
-  const double k = 1200 / 25.4;  // device pixels per millimetre
-  painter.scale(k, k);
-  const QImage shading(plate.shading.data, plate.shading.cols, plate.shading.rows, int(plate.shading.step), QImage::Format_Grayscale8);
-  painter.drawImage(QRectF(plate.drawing_origin_mm.x(), plate.drawing_origin_mm.y(), plate.drawing_size_mm.x(), plate.drawing_size_mm.y()), shading);
-  for (const auto& path_ : plate.paths) {
-    QPainterPath line(QPointF(path_.points[0].x(), path_.points[0].y()));
-    for (size_t i = 1; i < path_.points.size(); ++i) line.lineTo(path_.points[i].x(), path_.points[i].y());
-    if (path_.filled) line.closeSubpath(), painter.fillPath(line, Qt::black);
-    QPen pen(Qt::black, path_.width_mm, Qt::SolidLine, path_.dash_dot ? Qt::FlatCap : Qt::RoundCap, Qt::RoundJoin);
-    if (path_.dash_dot) pen.setDashPattern({3 / path_.width_mm, 1 / path_.width_mm, 0.5 / path_.width_mm, 1 / path_.width_mm});
-    painter.setPen(pen);
-    painter.drawPath(line);
-  }
-  const double x = plate.bar_start_mm.x(), y = plate.bar_start_mm.y(), len = plate.bar_length_mm;
-  painter.setPen(QPen(Qt::black, 0.3));
-  painter.drawLine(QPointF(x, y), QPointF(x + len, y));
-  painter.drawLine(QPointF(x, y - 1), QPointF(x, y + 1));
-  painter.drawLine(QPointF(x + len, y - 1), QPointF(x + len, y + 1));
-  QFont font("DejaVu Sans");
-  font.setPixelSize(3);  // 3 mm: the painter's unit is the millimetre
-  painter.setFont(font);
-  painter.drawText(QRectF(x - 10, y + 1, len + 20, 5), Qt::AlignHCenter | Qt::AlignTop, QString::fromStdString(plate.bar_label));
-  painter.drawText(QRectF(x + len + 4, y - 2.5, 40, 5), Qt::AlignLeft | Qt::AlignVCenter, QString::fromStdString(plate.scale_label));
-  for (const PlateText& t : plate.texts) {
-    QFont text_font("DejaVu Sans");
-    text_font.setPixelSize(int(std::lround(t.size_mm)));
-    painter.setFont(text_font);
-    painter.drawText(QRectF(t.at.x() - 60, t.at.y() - 1.3 * t.size_mm, 120, 1.3 * t.size_mm), Qt::AlignHCenter | Qt::AlignBottom,
-                     QString::fromStdString(t.text));
-  }
+  painter.scale(1200 / 25.4, 1200 / 25.4);  // device pixels per millimetre
+  for (const PageMark& m : page_marks(plate)) draw_mark(painter, plate, m);
   painter.end();
 }
 }  // namespace

@@ -31,13 +31,18 @@ std::string demarcating() {
 struct PlateOptions {
   double unit_mm = 50, ratio = 1;
   int section = 0;  // none, vertical, horizontal
+  int layout = 0, shading = 0, light_stack = 0;
+  std::string reverse_layer;
 };
 
 std::string plate(const std::string& file, int view, int page, const std::string& layers = "all", PlateOptions o = {}) {
   return mlx_filter("Export Illustration Plate",
                     {param_save_file("file", file, "*.svg"), param_bool("pdf", true), param_string("layers", layers),
-                     param_enum("view", view, 3), param_point("direction", 0, 0, -1), param_float("unit_mm", o.unit_mm),
-                     param_float("ratio", o.ratio), param_enum("shading", 0, 4), param_int("dpi", 150), param_float("width", 0.35),
+                     param_enum("view", view, 3), param_point("direction", 0, 0, -1), param_enum("layout", o.layout, 5),
+                     param_bool("turn_over", false), param_bool("upside_down", false), param_string("reverse_layer", o.reverse_layer),
+                     param_float("unit_mm", o.unit_mm), param_float("ratio", o.ratio), param_enum("shading", o.shading, 8),
+                     param_float("light_azimuth", 315), param_float("light_elevation", 20), param_float("openness_radius", 10),
+                     param_int("light_stack", o.light_stack), param_int("dpi", 150), param_float("width", 0.35),
                      param_enum("weights", 0, 3), param_enum("section", o.section, 3), param_bool("section_fill", true), param_float("section_at", 0.5),
                      param_enum("page", page, 3)});
 }
@@ -73,7 +78,10 @@ TEST(PlateFilter, TheDiscsOutlineIsDrawnToScale) {
   const std::regex pair(R"((-?[0-9.]+),(-?[0-9.]+))");
   double worst = 0;
   int points = 0;
-  for (std::sregex_iterator it(svg.begin(), svg.end(), pair), end; it != end; ++it) {
+  const size_t layer = svg.find("demarcating curves\""), layer_end = svg.find("</g>", layer);
+  ASSERT_NE(layer, std::string::npos);
+  const std::string curves = svg.substr(layer, layer_end - layer);  // the curve layer's group, not the scale bar's
+  for (std::sregex_iterator it(curves.begin(), curves.end(), pair), end; it != end; ++it) {
     const double x = std::stod((*it)[1]), y = std::stod((*it)[2]);
     worst = std::max(worst, std::abs(std::hypot(x - cx, y - cy) - 25));
     ++points;
@@ -133,8 +141,10 @@ TEST(PlateFilter, AnA4PageAndBadInput) {
   run = run_filters("plate_too_big", r.mesh,
                     {demarcating(), mlx_filter("Export Illustration Plate",
                                                {param_save_file("file", "big.svg", "*.svg"), param_bool("pdf", false), param_string("layers", "all"),
-                                                param_enum("view", 1, 3), param_point("direction", 0, 0, -1),
-                                                param_float("unit_mm", 1000), param_float("ratio", 1), param_enum("shading", 0, 4),
+                                                param_enum("view", 1, 3), param_point("direction", 0, 0, -1), param_enum("layout", 0, 5), param_bool("turn_over", false),
+       param_bool("upside_down", false), param_string("reverse_layer", ""),
+                                                param_float("unit_mm", 1000), param_float("ratio", 1), param_enum("shading", 0, 8), param_float("light_azimuth", 315), param_float("light_elevation", 20),
+       param_float("openness_radius", 10), param_int("light_stack", 0),
                                                 param_int("dpi", 50), param_float("width", 0.35), param_enum("weights", 0, 3),
                                                 param_enum("section", 0, 3), param_bool("section_fill", true), param_float("section_at", 0.5), param_enum("page", 1, 3)})},
                     {}, &dir);
@@ -184,4 +194,28 @@ TEST(PlateFilter, ANaNScaleAndAMissingFolderAreRefused) {
   run = run_filters("plate_missing_folder", r.mesh, {demarcating(), plate("/no/such/folder/p.svg", 0, 0)}, {});
   EXPECT_FALSE(run.crashed) << run.output;
   EXPECT_NE(run.output.find("could not be written to /no/such/folder/p.svg"), std::string::npos) << run.output;
+}
+
+// A layout through meshlabserver: the disc relief as a tablet (six views named on the plate, one
+// scale bar), under openness with a light stack of 4 (the images and the .lp file beside it); two
+// faces asked of a layer that is not there: a clear message.
+TEST(PlateFilter, ATabletLayoutWithALightStackAndAMissingReverseLayer) {
+  const Relief r = disc_on_plane({}, 60);
+  PlateOptions o;
+  o.ratio = 0.5, o.layout = 1, o.shading = 6, o.light_stack = 4;
+  std::string dir;
+  ServerRun run = run_filters("plate_tablet", r.mesh, {demarcating(), plate("tablet.svg", 0, 0, "all", o)}, {}, &dir);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("Plate layout: "), std::string::npos) << run.output;
+  const std::string svg = read_text(dir + "/tablet.svg");
+  for (const char* name : {">obverse<", ">reverse<", ">top edge<", ">bottom edge<", ">left edge<", ">right edge<"})
+    EXPECT_NE(svg.find(name), std::string::npos) << name;
+  EXPECT_EQ(svg.find("<g id=\"scale bar\""), svg.rfind("<g id=\"scale bar\""));  // one scale bar
+  const std::string lp = read_text(dir + "/tablet.lp");
+  EXPECT_EQ(lp.substr(0, 2), "4\n") << lp;
+  for (int k = 1; k <= 4; ++k) EXPECT_TRUE(std::filesystem::exists(dir + "/tablet-light-0" + std::to_string(k) + ".png")) << k;
+  o.layout = 3, o.reverse_layer = "no such layer", o.light_stack = 0, o.shading = 0;
+  run = run_filters("plate_two_faces", r.mesh, {demarcating(), plate("faces.svg", 0, 0, "all", o)}, {}, &dir);
+  EXPECT_FALSE(run.crashed);
+  EXPECT_NE(run.output.find("Two faces: no other layer is called \"no such layer\""), std::string::npos) << run.output;
 }
