@@ -415,6 +415,30 @@ TEST(PlateLayout, ATabletIsDrawnAsTheFatCrossAtOneScale) {
   EXPECT_NEAR(reverse.first, obverse.first, 1);
   EXPECT_NEAR(reverse.second, obverse.second, 1);
   EXPECT_EQ(p.scale_label, "10:1");
+  // Read back through a renderer: in the SVG rendered at 300 dpi, the scale bar is its length and
+  // the obverse, measured against it, is the tablet's real width (4 units).
+  const auto dir = std::filesystem::temp_directory_path() / "rk_layout_svg";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "tablet.svg") << plate_svg(p);
+  const std::string cmd = "rsvg-convert --dpi-x 300 --dpi-y 300 -o '" + (dir / "tablet.png").string() + "' '" + (dir / "tablet.svg").string() + "'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << "rsvg-convert (Debian package librsvg2-bin) must render the plate";
+  const cv::Mat img = cv::imread((dir / "tablet.png").string(), cv::IMREAD_GRAYSCALE);
+  ASSERT_FALSE(img.empty());
+  auto run_at = [&](int row, int from, int threshold) {  // the first run of pixels darker than threshold from x = from
+    int first = std::max(from, 0);
+    while (first < img.cols && img.at<uchar>(row, first) >= threshold) ++first;
+    int last = first;
+    while (last + 1 < img.cols && img.at<uchar>(row, last + 1) < threshold) ++last;
+    return std::pair<int, int>{first, last};
+  };
+  const auto bar = run_at(int(p.bar_start_mm.y() * px), int((p.bar_start_mm.x() - 2) * px), 128);
+  const double bar_mm = (bar.second - bar.first + 1) / px - 0.3;  // less the end ticks' line width
+  const auto face = run_at(int((p.drawing_origin_mm.y() + 22 + 30) * px), int((p.drawing_origin_mm.x() + 19) * px), 250);
+  const double face_mm = (face.second - face.first + 1) / px;
+  std::printf("rendered: scale bar %.3f mm (%.1f mm for %s), obverse %.2f mm = %.3f units\n", bar_mm, p.bar_length_mm,
+              p.bar_label.c_str(), face_mm, face_mm / bar_mm * std::stod(p.bar_label));
+  EXPECT_NEAR(bar_mm, p.bar_length_mm, 0.1);
+  EXPECT_NEAR(face_mm / bar_mm * std::stod(p.bar_label), 4, 0.05);
 }
 
 // Two faces from two meshes, a lithic and a figurine from one: the views' names and directions.
