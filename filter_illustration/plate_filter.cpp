@@ -188,16 +188,16 @@ PlateParams plate_params(FilterCall& call) {
 
 // The pottery convention: the piece as "Vessel Axis and Profile" left it (axis +Z, rim up), its
 // record made again as it lies; its own profile layer is not drawn on the exterior.
-Plate pottery_plate(FilterCall& call, View& view, const std::vector<double>& grey, std::vector<PlateCurves>& layers,
+Plate pottery_plate(FilterCall& call, const Surface& surface, const std::vector<double>& grey, std::vector<PlateCurves>& layers,
                     const PlateParams& p) {
   VesselRecordParams rp;
   rp.as_oriented = true;
-  const VesselRecord record = record_vessel(surface_of(view), rp);
+  const VesselRecord record = record_vessel(surface, rp);
   const std::string own_profile = derived_label(call.mesh(), "profile").toStdString();
   layers.erase(std::remove_if(layers.begin(), layers.end(), [&](const PlateCurves& l) { return l.name == own_profile; }), layers.end());
   for (const std::string& line : record_log_lines(record))
     if (line.rfind("Rim", 0) == 0 || line.rfind("No rim", 0) == 0) call.log(QString::fromStdString("Pottery plate: " + line));
-  return make_pottery_plate(view.mesh, grey, layers, pottery_sheet(record), p);
+  return make_pottery_plate(surface.mesh(), grey, layers, pottery_sheet(record), p);
 }
 
 // A rollout made by Unroll Around Axis in this session: facing the sheet (from +Z, its axis up),
@@ -267,7 +267,7 @@ std::vector<PlateCurves> curves_of_mesh(const MeshModel& m, const std::vector<Pl
 }
 
 // A layout's plate: the views of this mesh, or for Two faces with a reverse layer, each face's.
-Plate layout_plate(FilterCall& call, View& view, const std::vector<double>& grey, const std::vector<PlateCurves>& layers,
+Plate layout_plate(FilterCall& call, View& view, const Surface& surface, const std::vector<double>& grey, const std::vector<PlateCurves>& layers,
                    PlateLayout layout, const PlateParams& p, const std::optional<PlateShadingParams>& core, PlateView& main_view) {
   const ObjectFrame frame = object_frame(view.mesh, read_bool(call, "turn_over", "Turn over (layouts)"),
                                          read_bool(call, "upside_down", "Upside down (layouts)"));
@@ -293,17 +293,17 @@ Plate layout_plate(FilterCall& call, View& view, const std::vector<double>& grey
   LayoutView obverse{"obverse", default_view(view.mesh), 0, 0}, other{"reverse", default_view(back.mesh), 1, 0};
   main_view = obverse.view;
   std::vector<double> front_grey = grey;
-  if (core) front_grey = plate_shading(surface_of(view), obverse.view, *core), back_grey = plate_shading(surface_of(back), other.view, *core);
+  if (core) front_grey = plate_shading(surface, obverse.view, *core), back_grey = plate_shading(surface_of(back), other.view, *core);
   call.log("Plate layout: two faces from two layers, \"" + call.mesh().label() + "\" (obverse) and \"" + reverse_name +
            "\" (reverse), each " + QString::fromStdString(obverse.view.name) + ".");
   return make_panels_plate({PlatePanel{&view.mesh, &front_grey, &front_curves, obverse}, PlatePanel{&back.mesh, &back_grey, &back_curves, other}}, p);
 }
 
 // The light stack asked for: its images and .lp file beside the plate (<plate>-light-01.png ...).
-void write_light_stack(FilterCall& call, View& view, const PlateView& main_view, const PlateParams& p, double ratio, const QString& svg) {
+void write_light_stack(FilterCall& call, const Surface& surface, const PlateView& main_view, const PlateParams& p, double ratio, const QString& svg) {
   const int count = read_int(call, "light_stack", "Light stack (images)", 0, 360);
   if (count == 0) return;
-  const LightStack stack = light_stack(surface_of(view), main_view, p, ratio, count,
+  const LightStack stack = light_stack(surface, main_view, p, ratio, count,
                                        read_float(call, "light_elevation", "Light elevation (degrees)", 0.01, 90));
   const QString base = QFileInfo(svg).path() + "/" + QFileInfo(svg).completeBaseName();
   std::vector<std::string> names;
@@ -331,24 +331,25 @@ void apply_plate(FilterCall& call) {
   std::vector<PlateCurves> layers = curve_layers(call, call.params.getString("layers"), width);
   std::vector<double> grey = shading_of(call.mesh(), view, read_enum(call, "shading", "Shading", kShadings.size()));
   const std::optional<PlateShadingParams> core = core_shading(call);
+  const Surface surface = surface_of(view);  // the run's geometry, once: the record, the shadings, the light stack
   Plate plate;
   PlateView main_view;  // the view the light stack is taken from
   const auto layout = PlateLayout(read_enum(call, "layout", "Layout", kLayouts.size()));
   if (read_enum(call, "view", "View", kViews.size()) == kPotteryView) {
     main_view = pottery_front_view();
-    if (core) grey = plate_shading(surface_of(view), main_view, *core);
-    plate = pottery_plate(call, view, grey, layers, p);
+    if (core) grey = plate_shading(surface, main_view, *core);
+    plate = pottery_plate(call, surface, grey, layers, p);
   } else if (layout != PlateLayout::one_view) {
-    plate = layout_plate(call, view, grey, layers, layout, p, core, main_view);
+    plate = layout_plate(call, view, surface, grey, layers, layout, p, core, main_view);
   } else {
     mark_rollout(call, p);
     main_view = plate_view(call, view);
     call.log(QString::fromStdString("Plate view: " + main_view.name + "."));
-    if (core) grey = plate_shading(surface_of(view), main_view, *core);
+    if (core) grey = plate_shading(surface, main_view, *core);
     plate = make_plate(view.mesh, grey, layers, main_view, p);
   }
   const QString svg = write_svg(call, plate);
-  write_light_stack(call, view, main_view, p, plate.ratio, svg);
+  write_light_stack(call, surface, main_view, p, plate.ratio, svg);
   QString pdf;
   if (read_bool(call, "pdf", "Also as PDF")) write_pdf(plate, pdf = QFileInfo(svg).path() + "/" + QFileInfo(svg).completeBaseName() + ".pdf");
   call.log(QString("Illustration plate: %1 x %2 mm at %3%4, %5 curve layer(s), %6 paths (%7 segments visible, %8 hidden)%9; "

@@ -38,6 +38,16 @@ PlateCurves square(const std::string& name, double cx, double cy, double h, doub
   return c;
 }
 
+// The plate's SVG rendered by a real renderer (rsvg-convert) at 300 dpi, grey; empty if it failed.
+cv::Mat rendered_at_300_dpi(const Plate& p, const std::string& folder) {
+  const auto dir = std::filesystem::temp_directory_path() / folder;
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "plate.svg") << plate_svg(p);
+  const std::string cmd = "rsvg-convert --dpi-x 300 --dpi-y 300 -o '" + (dir / "plate.png").string() + "' '" + (dir / "plate.svg").string() + "'";
+  if (std::system(cmd.c_str()) != 0) return {};
+  return cv::imread((dir / "plate.png").string(), cv::IMREAD_GRAYSCALE);
+}
+
 // Distance (mm) from page point q to the outline of the square (centre c, half-side h) drawn from
 // above at `ratio` mm per unit.
 double to_square_mm(const Plate& p, const Vec2& q, double ratio, const Vec2& c, double h) {
@@ -101,13 +111,8 @@ TEST(Plate, TheSvgRendersWithTheCurvesAndTheScaleBarWhereTheyBelong) {
   params.dpi = 150;
   const Plate p = make_plate(block_relief(), {}, {square("top", 1, -1.5, 1, 2), square("buried", 0, 0, 6, -1)},
                              PlateView{Vec3(0, 0, -1), Vec3(0, 1, 0)}, params);
-  const auto dir = std::filesystem::temp_directory_path() / "rk_plate_svg";
-  std::filesystem::create_directories(dir);
-  std::ofstream(dir / "plate.svg") << plate_svg(p);
-  const std::string cmd = "rsvg-convert --dpi-x 300 --dpi-y 300 -o '" + (dir / "plate.png").string() + "' '" + (dir / "plate.svg").string() + "'";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << "rsvg-convert (Debian package librsvg2-bin) must render the plate";
-  const cv::Mat img = cv::imread((dir / "plate.png").string(), cv::IMREAD_GRAYSCALE);
-  ASSERT_FALSE(img.empty());
+  const cv::Mat img = rendered_at_300_dpi(p, "rk_plate_svg");
+  ASSERT_FALSE(img.empty()) << "rsvg-convert (Debian package librsvg2-bin) must render the plate";
   const double ppmm = 300 / 25.4;
   // The page size: 60 x 72 mm at 300 dpi.
   EXPECT_NEAR(img.cols, 60 * ppmm, 1.5);
@@ -417,13 +422,8 @@ TEST(PlateLayout, ATabletIsDrawnAsTheFatCrossAtOneScale) {
   EXPECT_EQ(p.scale_label, "10:1");
   // Read back through a renderer: in the SVG rendered at 300 dpi, the scale bar is its length and
   // the obverse, measured against it, is the tablet's real width (4 units).
-  const auto dir = std::filesystem::temp_directory_path() / "rk_layout_svg";
-  std::filesystem::create_directories(dir);
-  std::ofstream(dir / "tablet.svg") << plate_svg(p);
-  const std::string cmd = "rsvg-convert --dpi-x 300 --dpi-y 300 -o '" + (dir / "tablet.png").string() + "' '" + (dir / "tablet.svg").string() + "'";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << "rsvg-convert (Debian package librsvg2-bin) must render the plate";
-  const cv::Mat img = cv::imread((dir / "tablet.png").string(), cv::IMREAD_GRAYSCALE);
-  ASSERT_FALSE(img.empty());
+  const cv::Mat img = rendered_at_300_dpi(p, "rk_layout_svg");
+  ASSERT_FALSE(img.empty()) << "rsvg-convert (Debian package librsvg2-bin) must render the plate";
   auto run_at = [&](int row, int from, int threshold) {  // the first run of pixels darker than threshold from x = from
     int first = std::max(from, 0);
     while (first < img.cols && img.at<uchar>(row, first) >= threshold) ++first;
