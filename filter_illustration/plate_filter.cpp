@@ -92,7 +92,8 @@ void plate_parameters(const MeshModel&, RichParameterList& par) {
                         "all round at 45 degrees, averaged: a slope shading, no direction favoured), openness (the share of the sky "
                         "each point sees within the radius below: grooves and incisions dark, as LiDAR archaeologists "
                         "read surfaces), radiance scaling (light from the top left, convex parts brightened and concave "
-                        "parts darkened by the curvature, after MeshLab's on-screen mode)."));
+                        "parts darkened by the curvature, after MeshLab's on-screen mode). With one of these four "
+                        "a plate needs no curve layer: the shading alone is drawn (a tablet's wedges under raking light)."));
   par.addParam(RichFloat("light_azimuth", 315.0f, "Light azimuth (degrees)",
                          "Where raking light comes from: degrees clockwise from the top of the page (315: the top left)."));
   par.addParam(RichFloat("light_elevation", 20.0f, "Light elevation (degrees)",
@@ -110,7 +111,9 @@ void plate_parameters(const MeshModel&, RichParameterList& par) {
                         "0.35 mm width). By layer: the first layer 0.5 mm, the second 0.35, the others 0.25."));
   par.addParam(RichEnum("section", 0, kSections, "Cross-section",
                         "The profile of the object cut along a line of the drawing, drawn beside it at the same scale; "
-                        "the line marked dash-dot."));
+                        "the line marked dash-dot. In a layout, the first view is cut (the dorsal face: a tool's "
+                        "cross-section below it when horizontal; the obverse, the front) and the profile drawn below "
+                        "it or right of the views."));
   par.addParam(RichBool("section_fill", true, "Fill the section", "A closed profile (a closed mesh cut through: a sherd, a "
                                                                  "tool) filled black, as pottery sections are drawn."));
   par.addParam(RichFloat("section_at", 0.5f, "Section place", "Where the section's line crosses the drawing: a fraction of "
@@ -269,16 +272,15 @@ std::vector<PlateCurves> curves_of_mesh(const MeshModel& m, const std::vector<Pl
 // A layout's plate: the views of this mesh, or for Two faces with a reverse layer, each face's.
 Plate layout_plate(FilterCall& call, View& view, const Surface& surface, const std::vector<double>& grey, const std::vector<PlateCurves>& layers,
                    PlateLayout layout, const PlateParams& p, const std::optional<PlateShadingParams>& core, PlateView& main_view) {
-  const ObjectFrame frame = object_frame(view.mesh, read_bool(call, "turn_over", "Turn over (layouts)"),
+  const ObjectFrame frame = object_frame(view.mesh, layout, read_bool(call, "turn_over", "Turn over (layouts)"),
                                          read_bool(call, "upside_down", "Upside down (layouts)"));
   const QString reverse_name = call.params.getString("reverse_layer").trimmed();
   if (layout != PlateLayout::two_faces || reverse_name.isEmpty()) {
     QStringList names;
     for (const LayoutView& v : layout_views(layout, frame)) names << QString::fromStdString(v.name);
     call.log(QString::fromStdString("Plate layout: " + frame.how + "; views: ") + names.join(", ") + ".");
-    main_view = layout_views(layout, frame).front().view;
-    for (const LayoutView& v : layout_views(layout, frame))
-      if (v.view.direction.dot(-frame.front) > 0.999) main_view = v.view;  // the obverse, dorsal or front
+    if (!frame.warning.empty()) call.log(QString::fromStdString(frame.warning));
+    main_view = layout_views(layout, frame).front().view;  // the obverse, dorsal face or front
     return make_layout_plate(view.mesh, grey, layers, layout, frame, p, core ? &*core : nullptr);
   }
   MeshModel* reverse = nullptr;
@@ -331,6 +333,7 @@ void apply_plate(FilterCall& call) {
   std::vector<PlateCurves> layers = curve_layers(call, call.params.getString("layers"), width);
   std::vector<double> grey = shading_of(call.mesh(), view, read_enum(call, "shading", "Shading", kShadings.size()));
   const std::optional<PlateShadingParams> core = core_shading(call);
+  p.curves_required = !core;  // a rendered shading alone is a plate (a tablet under raking light); white paper is not
   const Surface surface = surface_of(view);  // the run's geometry, once: the record, the shadings, the light stack
   Plate plate;
   PlateView main_view;  // the view the light stack is taken from
@@ -352,12 +355,12 @@ void apply_plate(FilterCall& call) {
   write_light_stack(call, surface, main_view, p, plate.ratio, svg);
   QString pdf;
   if (read_bool(call, "pdf", "Also as PDF")) write_pdf(plate, pdf = QFileInfo(svg).path() + "/" + QFileInfo(svg).completeBaseName() + ".pdf");
-  call.log(QString("Illustration plate: %1 x %2 mm at %3%4, %5 curve layer(s), %6 paths (%7 segments visible, %8 hidden)%9; "
+  call.log(QString("Illustration plate: %1 x %2 mm at %3%4, %5 curve layer(s), %6 paths (%7 segments visible, %8)%9; "
                    "%10; scale bar %11; written to %12%13; %14 s.")
                .arg(plate.width_mm, 0, 'f', 1).arg(plate.height_mm, 0, 'f', 1).arg(QString::fromStdString(plate.scale_label))
                .arg(p.ratio > 0 ? "" : " (automatic)").arg(layers.size()).arg(plate.paths.size())
                .arg(thousands(plate.visible_segments))
-               .arg(thousands(plate.hidden_segments) +
+               .arg(thousands(plate.hidden_segments) + " hidden" +
                     (plate.outside_segments > 0 ? QString(", %1 off the mesh's drawing").arg(thousands(plate.outside_segments)) : QString()))
                .arg(plate.section_segments > 0 ? QString(", a section of %1 segments").arg(plate.section_segments) : QString())
                .arg(size_text(plate, p.unit_mm)).arg(QString::fromStdString(plate.bar_label)).arg(svg)

@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # Re-makes the layout pictures of docs/illustration.md (issue 44): the shared scans of
 # ../shared/data/meshes (the OBJ ones converted to PLY) through reliefkit-batch — Demarcating
-# Curves, then Export Illustration Plate at its defaults (the default view), with the tablet,
-# lithic and figurine layouts, and with the four headless shadings (raking, multi-directional,
-# openness, radiance scaling; the raking one with a light stack of 8) — rendered with rsvg-convert.
-# Output: docs/img/plate_default_views.png, plate_layout_figurine.png, plate_layout_tablet.png,
-# plate_layout_lithic.png, plate_shadings_coin.png, plate_shadings_gargoyle.png (working files
-# in build/layout-pictures).
+# Curves, then Export Illustration Plate at its defaults (the default view) and with the four
+# headless shadings (raking, multi-directional, openness, radiance scaling; the raking one with a
+# light stack of 8) — rendered with rsvg-convert; then the four plates of the disciplines, each
+# beside MeshLab 2020.09's view of the piece (its GUI under a virtual display): a synthetic tablet
+# (examples/tablet_plate.mlx), blade (lithic_plate.mlx) and two-faced coin (coin_two_faces.mlx),
+# made by rk_make_mesh, and the shared Cycladic torso (figurine_plate.mlx), through meshlabserver.
+# Output: docs/img/plate_default_views.png, plate_shadings_coin.png, plate_shadings_gargoyle.png,
+# plate_layout_tablet.png, plate_layout_lithic.png, plate_layout_coin.png,
+# plate_layout_figurine.png (working files in build/layout-pictures).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="$here/build/layout-pictures"; rm -rf "$out"; mkdir -p "$out/scans"
@@ -17,7 +20,8 @@ for f in "$here"/../shared/data/meshes/*; do
     *.ply) ln -s "$f" "$out/scans/$name" ;;
   esac
 done
-script() {  # $1: layout (0 one view, 1 tablet, 2 lithic, 4 figurine), $2: shading (0 automatic; 4-7 the core's), $3: light stack
+source "$here/scripts/picture-helpers.sh"  # view(), label()
+script() {  # $1: layout (0 one view), $2: shading (0 automatic; 4-7 the core's), $3: light stack
   cat <<EOS
 <!DOCTYPE FilterScript>
 <FilterScript>
@@ -32,20 +36,35 @@ run() {  # $1: the output's name, then script's arguments
   "$here/build/prefix/bin/reliefkit-batch" -j 2 -s "$out/$name.mlx" "$out/scans" "$out/out$name" 2>&1 |
     grep -E "Plate (view|layout)|Illustration plate:|Light stack" | sed 's/^.*Export Illustration Plate: //' | cut -c1-200
 }
-for layout in 0 1 2 4; do run "$layout" "$layout" 0 0; done
+run 0 0 0 0
 run s4 0 4 8
 for shading in 5 6 7; do run "s$shading" 0 "$shading" 0; done
 svg() { ls "$out/out$1/$2"/*.svg; }
 png() { rsvg-convert -h "$3" -b white "$(svg "$1" "$2")" -o "$4"; }
 for s in cycladic_figurine_torso fertility gargoyle oxhide_ingot penny_gigamacro stanford-bunny; do png 0 "$s" 420 "$out/default_$s.png"; done
 convert "$out"/default_*.png +append -resize 1600x "$here/docs/img/plate_default_views.png"
-png 4 cycladic_figurine_torso 700 "$here/docs/img/plate_layout_figurine.png"
-png 1 oxhide_ingot 800 "$here/docs/img/plate_layout_tablet.png"
-png 2 cycladic_figurine_torso 600 "$here/docs/img/plate_layout_lithic.png"
 for scan in penny_gigamacro gargoyle; do
   for shading in 4 5 6 7; do png "s$shading" "$scan" 400 "$out/shading_${scan}_$shading.png"; done
   convert "$out"/shading_"${scan}"_{4,5,6,7}.png +append -resize 1600x "$out/shadings_$scan.png"
 done
 cp "$out/shadings_penny_gigamacro.png" "$here/docs/img/plate_shadings_coin.png"
 cp "$out/shadings_gargoyle.png" "$here/docs/img/plate_shadings_gargoyle.png"
-echo "pictures written to $here/docs/img: plate_default_views.png, plate_layout_figurine.png, plate_layout_tablet.png, plate_layout_lithic.png, plate_shadings_coin.png, plate_shadings_gargoyle.png"
+# The disciplines' plates: each piece through its example script in meshlabserver (the plate beside
+# the mesh's file), beside MeshLab's view of it.
+for find in tablet blade coin; do "$here/build/tests/rk_make_mesh" "$find" upright "$out/$find.ply" | sed "s/^/$find: /"; done
+cp "$out/scans/cycladic_figurine_torso.ply" "$out/torso.ply"
+plate_beside_view() {  # $1: mesh, $2: example script, $3: picture, $4: caption of the view, $5: of the plate
+  "$here/scripts/meshlabserver" -i "$out/$1.ply" -s "$here/examples/$2.mlx" >"$out/$1.log" 2>&1
+  grep -E "^LOG: 2 (Plate layout|Illustration plate)" "$out/$1.log" | sed 's/^LOG: 2 //' | cut -c1-240
+  view "$out/$1_view.png" 0 0 "$out/$1.ply"
+  label "$out/$1_view.png" "$4"
+  rsvg-convert -h 1100 -b white "$out/$1-plate.svg" -o "$out/$1_plate.png"
+  convert "$out/$1_plate.png" -resize x660 "$out/$1_plate.png"
+  label "$out/$1_plate.png" "$5"
+  convert "$out/$1_view.png" "$out/$1_plate.png" -background white -gravity north +append "$here/docs/img/$3"
+}
+plate_beside_view tablet tablet_plate plate_layout_tablet.png "a tablet in MeshLab" "Tablet layout, raking light"
+plate_beside_view blade lithic_plate plate_layout_lithic.png "a blade in MeshLab" "Lithic layout with its section"
+plate_beside_view coin coin_two_faces plate_layout_coin.png "a coin in MeshLab" "Two faces, raking light"
+plate_beside_view torso figurine_plate plate_layout_figurine.png "the Cycladic torso in MeshLab" "Figurine layout"
+echo "pictures written to $here/docs/img: plate_default_views.png, plate_shadings_coin.png, plate_shadings_gargoyle.png, plate_layout_tablet.png, plate_layout_lithic.png, plate_layout_coin.png, plate_layout_figurine.png"

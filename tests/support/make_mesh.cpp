@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <Eigen/Geometry>
 #include <string>
 
 #include <opencv2/imgcodecs.hpp>
@@ -22,6 +23,7 @@
 
 #include "bases.h"
 #include "drawings.h"
+#include "finds.h"
 #include "mesh_files.h"
 #include "shapes.h"
 #include "sherds.h"
@@ -92,8 +94,17 @@ int main(int argc, char** argv) {
       rktest::write_ply(argv[5], m);
     } else if (kind == "sphere" && argc == 6) {
       rktest::write_ply(argv[5], rktest::sphere(std::atof(argv[2]), std::atoi(argv[3]), std::atof(argv[4])));
+    } else if ((kind == "tablet" || kind == "blade" || kind == "coin") && argc == 4) {
+      // upright: as finds.h makes them (the obverse or dorsal face towards +z, up +y); lying: on
+      // the scanner's table, that face up (+y), the top or tip away (-z)
+      const std::string pose = argv[2];
+      const reliefkit::Mat3 turn = pose == "lying" ? reliefkit::Mat3(Eigen::AngleAxisd(-M_PI / 2, reliefkit::Vec3::UnitX())) : reliefkit::Mat3::Identity();
+      const rktest::Find f = kind == "tablet" ? rktest::tablet({}, turn) : kind == "blade" ? rktest::blade({}, turn) : rktest::coin({}, turn);
+      rktest::write_ply(argv[3], f.mesh);
+      std::printf("faces %d width %.2f height %.2f thickness through the middle %.2f\n", f.mesh.n_faces(), f.width, f.height,
+                  f.thickness_at_middle);
     } else {
-      std::fprintf(stderr, "usage: rk_make_mesh torus R r nu nv jitter seed out.ply | relief-torus FACES out.ply | "
+      std::fprintf(stderr, "usage: rk_make_mesh tablet|blade|coin upright|lying out.ply | torus R r nu nv jitter seed out.ply | relief-torus FACES out.ply | "
                            "sphere r levels jitter out.ply | nested-drawing out.png | dome W H cell out.ply | base-figure CLASS SEED VIEWS(fst) out.png | "
                            "goblet-figure out.png\n");
       return 2;

@@ -182,9 +182,6 @@ PlateView facing_view(const TriMesh& mesh) {
   return view;
 }
 
-namespace {
-// The surface's principal axes: eigenvectors of the area-weighted covariance of the faces'
-// centroids, eigenvalues ascending.
 Eigen::SelfAdjointEigenSolver<Mat3> surface_axes(const TriMesh& mesh) {
   Vec3 mean = Vec3::Zero();
   double total = 0;
@@ -203,6 +200,7 @@ Eigen::SelfAdjointEigenSolver<Mat3> surface_axes(const TriMesh& mesh) {
   return Eigen::SelfAdjointEigenSolver<Mat3>(cov / total);
 }
 
+namespace {
 // The first of the components (z, x, y) that is not near zero made negative: looking the way
 // MeshLab's first view looks (along -z), else from +x, else from +y.
 Vec3 as_meshlab_looks(Vec3 d) {

@@ -2,6 +2,7 @@
 // common/src/illustration; see reliefkit/illustration/plate.h).
 #pragma once
 
+#include <Eigen/Eigenvalues>
 #include <functional>
 #include <opencv2/core.hpp>
 
@@ -76,5 +77,20 @@ Vec2 section_room_mm(const PageFrame& frame, const PlateParams& params);
 /// placed in the room beside the drawing) and the section's line on the drawing (dash-dot).
 /// Throws InputError when the plane misses the mesh.
 void add_section(Plate& plate, const TriMesh& mesh, const PageFrame& frame, const PlateParams& params);
+
+/// The same for a drawing placed anywhere (a layout's first view): the profile's paths placed with
+/// its origin at `profile_at` (a vertical section's depth running right from there, a horizontal
+/// one's down) and the line across the drawing whose top-left is `drawing_at`. Nothing without a
+/// section.
+struct SectionDrawing {
+  std::vector<PlatePath> paths;
+  long segments = 0;
+};
+SectionDrawing section_drawing(const TriMesh& mesh, const PageFrame& frame, const PlateParams& params, const Vec2& drawing_at,
+                               const Vec2& profile_at);
+
+/// The surface's principal axes: the eigenvectors of the area-weighted covariance of its faces'
+/// centroids, eigenvalues ascending (extents a decimated scan's dense patches do not pull).
+Eigen::SelfAdjointEigenSolver<Mat3> surface_axes(const TriMesh& mesh);
 
 }  // namespace reliefkit

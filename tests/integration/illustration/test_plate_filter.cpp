@@ -4,6 +4,7 @@
 // the SVG drawn by rsvg-convert; bad input.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <filesystem>
 
 #include <cmath>
@@ -14,11 +15,14 @@
 #include <sstream>
 
 #include "bad_input.h"
+#include "finds.h"
 #include "mesh_files.h"
 #include "reliefs.h"
 #include "server.h"
 
 using namespace rktest;
+using reliefkit::Mat3;
+using reliefkit::Vec3;
 
 namespace {
 
@@ -218,4 +222,24 @@ TEST(PlateFilter, ATabletLayoutWithALightStackAndAMissingReverseLayer) {
   run = run_filters("plate_two_faces", r.mesh, {demarcating(), plate("faces.svg", 0, 0, "all", o)}, {}, &dir);
   EXPECT_FALSE(run.crashed);
   EXPECT_NE(run.output.find("Two faces: no other layer is called \"no such layer\""), std::string::npos) << run.output;
+}
+
+// The lithic example script as shipped (examples/lithic_plate.mlx) on a blade (rktest::blade,
+// turned over and lying on its side): the dorsal face found, the three views named, the section
+// filled below the dorsal face, one scale bar — one filter run from a script.
+TEST(PlateFilter, TheLithicExampleDrawsABladeWithItsSection) {
+  rktest::BladeOptions b;
+  b.levels = 5;
+  const Mat3 lying = Eigen::AngleAxisd(M_PI / 2, Vec3::UnitZ()).toRotationMatrix() * Eigen::AngleAxisd(M_PI, Vec3::UnitY()).toRotationMatrix();
+  const rktest::Find blade = rktest::blade(b, lying);
+  const std::string dir = temp_dir("plate_lithic");
+  rktest::write_ply(dir + "/blade.ply", blade.mesh);
+  const ServerRun run = run_meshlabserver({"-i", dir + "/blade.ply", "-s", source_dir() + "/examples/lithic_plate.mlx"});
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("Plate layout: the dorsal face the less flat"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("a section of"), std::string::npos) << run.output;
+  const std::string svg = read_text(dir + "/blade-plate.svg");
+  for (const char* name : {">dorsal face<", ">right profile<", ">ventral face<", ">section<"}) EXPECT_NE(svg.find(name), std::string::npos) << name;
+  EXPECT_NE(svg.find("<g id=\"section\""), std::string::npos);
+  EXPECT_EQ(svg.find("<g id=\"scale bar\""), svg.rfind("<g id=\"scale bar\""));
 }

@@ -12,6 +12,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "reliefkit/illustration/plate.h"
+#include "finds.h"
 #include "shapes.h"
 
 using namespace reliefkit;
@@ -381,7 +382,7 @@ TEST(PlateLayout, ATabletIsDrawnAsTheFatCrossAtOneScale) {
   const Mat3 turn = Eigen::AngleAxisd(80 * M_PI / 180, Vec3::UnitZ()).toRotationMatrix();
   TriMesh tablet = rktest::sphere(1, 4);
   for (Vec3& p : tablet.vertices) p = turn * Vec3(2 * p.x(), 3 * p.y(), 0.8 * p.z());
-  const ObjectFrame f = object_frame(tablet);
+  const ObjectFrame f = object_frame(tablet, PlateLayout::tablet);
   const Vec3 width = turn * Vec3::UnitX(), height = turn * Vec3::UnitY(), thickness = turn * Vec3::UnitZ();
   EXPECT_GT(std::abs(f.front.dot(thickness)), 0.999) << f.how;
   EXPECT_GT(f.up.dot(height), 0.999);  // its long axis up, pointing up the scan's y
@@ -404,7 +405,7 @@ TEST(PlateLayout, ATabletIsDrawnAsTheFatCrossAtOneScale) {
   params.ratio = 10, params.curves_required = false;
   const Plate p = make_layout_plate(tablet, {}, {}, PlateLayout::tablet, f, params);
   ASSERT_EQ(p.texts.size(), 6u);
-  EXPECT_EQ(p.texts[2].text, "obverse");
+  EXPECT_EQ(p.texts[0].text, "obverse");
   // The grid at 10:1: columns 16, 40, 16 mm wide, rows 16, 60, 16, 60 mm high, 6 mm apart.
   EXPECT_NEAR(p.drawing_size_mm.x(), 16 + 40 + 16 + 2 * 6, 0.5);
   EXPECT_NEAR(p.drawing_size_mm.y(), 16 + 60 + 16 + 60 + 4 * 6, 0.5);
@@ -468,6 +469,145 @@ TEST(PlateLayout, LithicFigurineAndTwoFacesNameTheirViews) {
                                     params);
   EXPECT_NEAR(p.drawing_size_mm.x(), 20 + 6 + 20, 0.5);
   EXPECT_THROW(make_panels_plate({}, params), InputError);
+}
+
+namespace {
+// A box 2 hx wide (x), 2 hy high (y), 2 hz thick (z), each face an n x n grid of its own vertices,
+// greyed by face (+x 0.2, -x 0.3, +y 0.4, -y 0.5, +z 0.6, -z 0.7) at its middle, the edges' faces
+// lighter towards +z by up to 0.1 and the big faces lighter towards +y: a view's centre tells its
+// face, its ends which way it is turned.
+struct MarkedBox {
+  TriMesh mesh;
+  std::vector<double> grey;
+};
+MarkedBox marked_box(const Vec3& half, int n) {
+  MarkedBox b;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int sign : {1, -1}) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3, first = int(b.mesh.vertices.size());
+      const double base = 0.2 + 0.1 * (2 * axis + (sign > 0 ? 0 : 1));
+      for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j) {
+          Vec3 p;
+          p[axis] = sign * half[axis], p[u] = half[u] * (2.0 * i / n - 1), p[v] = half[v] * (2.0 * j / n - 1);
+          b.mesh.vertices.push_back(p);
+          b.grey.push_back(base + (axis == 2 ? 0.1 * p.y() / half.y() : 0.1 * p.z() / half.z()));
+        }
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          const int a = first + i * (n + 1) + j, c = a + n + 1;
+          if (sign > 0) b.mesh.faces.push_back({a, c, c + 1}), b.mesh.faces.push_back({a, c + 1, a + 1});
+          else b.mesh.faces.push_back({a, c + 1, c}), b.mesh.faces.push_back({a, a + 1, c + 1});
+        }
+    }
+  return b;
+}
+
+// The grey of a plate's raster at a point of the page (mm).
+double grey_at(const Plate& p, const Vec2& page_mm) {
+  const Vec2 at = (page_mm - p.drawing_origin_mm) * (300 / 25.4);
+  return p.shading.at<uchar>(int(std::lround(at.y())), int(std::lround(at.x()))) / 255.0;
+}
+}  // namespace
+
+// A box with marked faces in the tablet layout: every view shows the face it names, turned as
+// the fat cross turns it (each edge's side towards the obverse next to the obverse; the reverse
+// upside down).
+TEST(PlateLayout, EveryViewOfAMarkedBoxShowsTheFaceItNamesTurnedAsItsCellSays) {
+  const MarkedBox box = marked_box(Vec3(2, 3, 0.8), 24);
+  const ObjectFrame f = object_frame(box.mesh, PlateLayout::tablet);
+  EXPECT_GT(f.front.z(), 0.999) << f.how;
+  EXPECT_GT(f.up.y(), 0.999);
+  PlateParams params;
+  params.ratio = 10, params.curves_required = false;
+  const Plate p = make_layout_plate(box.mesh, box.grey, {}, PlateLayout::tablet, f, params);
+  const std::vector<LayoutView> views = layout_views(PlateLayout::tablet, f);
+  ASSERT_EQ(p.texts.size(), views.size());
+  // name -> the face's grey, and where (in mm across, down the cell from its centre) the face is lighter
+  struct Expect { const char* name; double grey; Vec2 lighter; };
+  const Expect expected[] = {{"obverse", 0.6, {0, -1}},    {"top edge", 0.4, {0, 1}},   {"left edge", 0.3, {1, 0}},
+                             {"right edge", 0.2, {-1, 0}}, {"bottom edge", 0.5, {0, -1}}, {"reverse", 0.7, {0, 1}}};
+  const double row_height[] = {16, 60, 16, 60};
+  for (size_t k = 0; k < views.size(); ++k) {
+    SCOPED_TRACE(views[k].name);
+    const Expect& e = expected[k];
+    ASSERT_EQ(p.texts[k].text, e.name);
+    const Vec2 centre = p.texts[k].at - Vec2(0, 4 + 0.5 * row_height[size_t(views[k].row)]);
+    EXPECT_NEAR(grey_at(p, centre), e.grey, 0.01);
+    const Vec2 step = 5 * e.lighter;  // 5 mm towards the lighter side and away from it
+    EXPECT_GT(grey_at(p, centre + step) - grey_at(p, centre - step), 0.01) << "turned the wrong way";
+  }
+}
+
+// A knapped blade, turned: the dorsal face (the ridged one) drawn first, its long axis up, its
+// section below it — a closed loop filled black, as wide as the blade and as thick as it is
+// through the middle, lined up with the dorsal face — and named.
+TEST(PlateLayout, ABladesDorsalFaceLongAxisAndSection) {
+  const Mat3 turn = Eigen::AngleAxisd(2.0, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  rktest::BladeOptions o;
+  o.levels = 5;
+  const rktest::Find blade = rktest::blade(o, turn);
+  const ObjectFrame f = object_frame(blade.mesh, PlateLayout::lithic);
+  EXPECT_GT(f.front.dot(blade.front), 0.99) << f.how;
+  EXPECT_GT(std::abs(f.up.dot(blade.up)), 0.99) << f.how;
+  PlateParams params;
+  params.ratio = 2, params.curves_required = false;
+  params.section.axis = SectionAxis::horizontal;
+  const Plate p = make_layout_plate(blade.mesh, {}, {}, PlateLayout::lithic, f, params);
+  ASSERT_EQ(p.texts.size(), 4u);
+  EXPECT_EQ(p.texts[0].text, "dorsal face");
+  EXPECT_TRUE(std::any_of(p.texts.begin(), p.texts.end(), [](const PlateText& t) { return t.text == "section"; }));
+  std::vector<Vec2> loop;
+  for (const PlatePath& path : p.paths)
+    if (path.layer == "section" && path.filled) loop = path.points;
+  ASSERT_FALSE(loop.empty());
+  Eigen::AlignedBox2d box;
+  for (const Vec2& q : loop) box.extend(q);
+  std::printf("section %.2f x %.2f mm at 2:1 (blade %.1f wide, %.2f thick through the middle)\n", box.sizes().x(), box.sizes().y(),
+              blade.width, blade.thickness_at_middle);
+  EXPECT_NEAR(box.sizes().x(), 2 * blade.width, 0.4);
+  EXPECT_NEAR(box.sizes().y(), 2 * blade.thickness_at_middle, 0.4);
+  // Under the dorsal face and as wide: its drawing spans the same columns of the page.
+  const double dorsal_centre = p.texts[0].at.x();
+  EXPECT_NEAR(box.center().x(), dorsal_centre, 0.2);
+  EXPECT_GT(box.min().y(), p.texts[0].at.y());
+  // The section's line across the dorsal face, at its middle.
+  bool line = false;
+  for (const PlatePath& path : p.paths) line |= path.layer == "section line" && path.points.size() == 2;
+  EXPECT_TRUE(line);
+}
+
+// A cuneiform tablet, turned: the obverse its flatter face (the reverse bulges), its long axis up
+// where the scan's up lies far from it.
+TEST(PlateLayout, ATabletsObverseIsItsFlatterFace) {
+  rktest::TabletOptions o;
+  o.levels = 5;
+  const Mat3 turn = Eigen::AngleAxisd(80 * M_PI / 180, Vec3::UnitZ()).toRotationMatrix() *
+                    Eigen::AngleAxisd(M_PI, Vec3::UnitY()).toRotationMatrix();  // turned over: its obverse away from +z
+  const rktest::Find tablet = rktest::tablet(o, turn);
+  const ObjectFrame f = object_frame(tablet.mesh, PlateLayout::tablet);
+  EXPECT_GT(f.front.dot(tablet.front), 0.99) << f.how;
+  EXPECT_GT(f.up.dot(tablet.up), 0.99) << f.how;
+  const ObjectFrame turned = object_frame(tablet.mesh, PlateLayout::tablet, true, true);
+  EXPECT_GT(turned.front.dot(-tablet.front), 0.99);
+  EXPECT_GT(turned.up.dot(-tablet.up), 0.99);
+}
+
+// A scan of one side (a relief scanned from the front only, as the shared penny): every layout's
+// front is the scanned face, whichever face would be the flatter, and the layouts with views from
+// behind warn that those show the scan's underside; a closed tablet gives no warning.
+TEST(PlateLayout, AScanOfOneSideIsDrawnFromItsScannedFace) {
+  const TriMesh relief = rktest::height_field([](double x, double y) { return 0.3 * std::sin(x) * std::cos(y); }, 6, 40);
+  for (const PlateLayout layout : {PlateLayout::tablet, PlateLayout::lithic, PlateLayout::two_faces, PlateLayout::figurine}) {
+    const ObjectFrame f = object_frame(relief, layout);
+    EXPECT_GT(f.front.z(), 0.99) << int(layout) << ": " << f.how;
+    EXPECT_NE(f.warning.find("a scan of one side"), std::string::npos) << int(layout);
+  }
+  EXPECT_NE(object_frame(relief, PlateLayout::two_faces).warning.find("Reverse layer"), std::string::npos);
+  EXPECT_EQ(object_frame(relief, PlateLayout::one_view).warning, "");
+  rktest::TabletOptions o;
+  o.levels = 4;
+  EXPECT_EQ(object_frame(rktest::tablet(o, Mat3::Identity()).mesh, PlateLayout::tablet).warning, "");
 }
 
 // The headless shadings on surfaces of known shape (issue 44).

@@ -109,7 +109,7 @@ struct Plate {
   std::string bar_label;         // "10 mm"
   std::string scale_label;       // "1:1"
   double ratio = 1;              // the scale drawn (params.ratio, or the one chosen)
-  Vec2 real_size_mm{0, 0};       // the object's extent in the view at params.unit_mm: a check of the unit
+  Vec2 real_size_mm{0, 0};       // the object's extent in the (a layout's main) view at params.unit_mm: a check of the unit
   long section_segments = 0;     // of the profile (section paths are in `paths`, layer "section")
   long visible_segments = 0, hidden_segments = 0;
   long outside_segments = 0;     // off the mesh's drawing (another mesh's curves): not drawn
@@ -195,17 +195,27 @@ enum class PlateLayout {
 };
 
 /// The object's frame for a layout: `front` the outward normal of the face drawn first (obverse,
-/// dorsal, front), `up` up the page in that view: default_view's (the least extent of the surface
-/// the front's axis — a tablet's and a tool's flattest faces, a figurine's depth —, the front the
-/// side MeshLab shows first, up the scan's y unless the object lies on its side). `turn_over` swaps front and back,
-/// `upside_down` turns up down.
+/// dorsal, front), `up` up the page in that view. For every layout the front's axis is the
+/// surface's least extent (a tablet's and a tool's flattest faces, a figurine's depth); then
+/// - tablet: the obverse the flatter face (the scanned one of a scan of one side), up the scan's
+///   up within the face unless the face's long axis lies more than 70 degrees from it;
+/// - lithic: the dorsal face the less flat (the ventral is the flake's smooth side; the scanned
+///   one of a scan of one side), the long axis up, the butt (where the bulk of the surface lies
+///   along it) down and the tip up;
+/// - the others: default_view's (the side MeshLab shows first, the scan's y up unless the object
+///   lies on its side).
+/// `turn_over` swaps front and back, `upside_down` turns up down; `how` says what was found, and
+/// `warning` (else empty) that the scan has next to nothing facing away from the front (a scan of
+/// one side: the layout's views from behind show its underside).
 struct ObjectFrame {
   Vec3 front{0, 0, 1}, up{0, 1, 0};
-  std::string how;
+  std::string how, warning;
 };
-ObjectFrame object_frame(const TriMesh& mesh, bool turn_over = false, bool upside_down = false);
+ObjectFrame object_frame(const TriMesh& mesh, PlateLayout layout, bool turn_over = false, bool upside_down = false);
 
 /// A view of a layout: its name ("obverse", "top edge"...), its direction and up, and its cell.
+/// The first of a layout's views is its main one (the obverse, dorsal face, front): the one a
+/// section cuts and a light stack is taken from.
 struct LayoutView {
   std::string name;
   PlateView view;
