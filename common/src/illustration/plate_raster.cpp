@@ -4,11 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <opencv2/imgproc.hpp>
 
 namespace reliefkit {
 namespace {
 
 constexpr double kMostPixels = 60e6;  // about A3 at 600 dpi
+constexpr double kSmallHoleEdges = 3;  // the scan's holes filled in the drawing: at most this many mean edges across
 
 // Per-vertex area-weighted normals (for the Lambertian shading).
 std::vector<Vec3> vertex_normals(const TriMesh& mesh) {
@@ -35,8 +37,9 @@ struct ScreenVertex {
   double x, y, z, grey;
 };
 
-// One triangle into the raster: nearest depth wins, its grey with it.
-void draw_triangle(const ScreenVertex (&t)[3], cv::Mat& depth, cv::Mat& grey) {
+// One triangle into the raster: nearest depth wins, its grey with it, and whether it was seen
+// from behind (its outward side turned away from the viewer).
+void draw_triangle(const ScreenVertex (&t)[3], bool from_behind, cv::Mat& depth, cv::Mat& grey, cv::Mat& behind) {
   const double area = (t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[2].x - t[0].x) * (t[1].y - t[0].y);
   if (std::abs(area) < 1e-12) return;
   const int x0 = std::max(0, int(std::floor(std::min({t[0].x, t[1].x, t[2].x})))),
@@ -58,7 +61,74 @@ void draw_triangle(const ScreenVertex (&t)[3], cv::Mat& depth, cv::Mat& grey) {
       d = z;
       const double g = w[0] * t[0].grey + w[1] * t[1].grey + w[2] * t[2].grey;
       grey.at<uchar>(y, x) = cv::saturate_cast<uchar>(255 * std::clamp(g, 0.0, 1.0));
+      behind.at<uchar>(y, x) = from_behind ? 255 : 0;
     }
+}
+
+// The holes of the drawing: pixels where the paper or the back of the surface shows.
+cv::Mat hole_pixels(const cv::Mat& depth, const cv::Mat& behind) {
+  cv::Mat paper;
+  cv::compare(depth, std::numeric_limits<double>::infinity(), paper, cv::CMP_EQ);
+  return paper | behind;
+}
+
+// The holes to fill: connected hole pixels inside the drawing (off the raster's border) at most
+// `most_px` across — the scan's small holes, not the paper round the object or between its parts
+// (nor a hole a drawing of this size shows: a broken vessel's, a pierced seal's).
+std::vector<cv::Point> small_holes(const cv::Mat& holes, double most_px) {
+  cv::Mat labels, stats, centroids;
+  const int count = cv::connectedComponentsWithStats(holes, labels, stats, centroids, 8, CV_32S);
+  std::vector<char> small(size_t(count), 0);
+  for (int k = 1; k < count; ++k) {
+    const int x = stats.at<int>(k, cv::CC_STAT_LEFT), y = stats.at<int>(k, cv::CC_STAT_TOP);
+    const int w = stats.at<int>(k, cv::CC_STAT_WIDTH), h = stats.at<int>(k, cv::CC_STAT_HEIGHT);
+    const bool inside = x > 0 && y > 0 && x + w < holes.cols && y + h < holes.rows;
+    small[size_t(k)] = inside && std::max(w, h) <= most_px;
+  }
+  std::vector<cv::Point> pixels;
+  for (int y = 0; y < holes.rows; ++y)
+    for (int x = 0; x < holes.cols; ++x)
+      if (small[size_t(labels.at<int>(y, x))]) pixels.emplace_back(x, y);
+  return pixels;
+}
+
+// The scan's small holes (a few triangles across, left by the scanner or by decimation) would
+// show as dots of paper or of the surface's dark back: filled from their rim inwards, each pixel
+// the mean grey and depth of its filled or surface neighbours.
+void fill_small_holes(DepthRaster& r, const cv::Mat& behind, double most_px) {
+  const cv::Mat holes = hole_pixels(r.depth, behind);
+  std::vector<cv::Point> left = small_holes(holes, most_px);
+  cv::Mat known = holes == 0;
+  while (!left.empty()) {
+    std::vector<cv::Point> next, done;
+    std::vector<std::pair<double, double>> values;  // grey, depth
+    for (const cv::Point& p : left) {
+      double grey = 0, depth = 0;
+      int n = 0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const cv::Point q(p.x + dx, p.y + dy);
+          if (q.x < 0 || q.y < 0 || q.x >= known.cols || q.y >= known.rows || !known.at<uchar>(q)) continue;
+          grey += r.grey.at<uchar>(q), depth += r.depth.at<double>(q), ++n;
+        }
+      if (n == 0) next.push_back(p);
+      else done.push_back(p), values.emplace_back(grey / n, depth / n);
+    }
+    if (done.empty()) break;
+    for (size_t k = 0; k < done.size(); ++k) {
+      r.grey.at<uchar>(done[k]) = cv::saturate_cast<uchar>(values[k].first);
+      r.depth.at<double>(done[k]) = values[k].second, known.at<uchar>(done[k]) = 255;
+    }
+    left.swap(next);
+  }
+}
+
+// The mean edge length of the mesh, in mesh units.
+double mean_edge_length(const TriMesh& mesh) {
+  double sum = 0;
+  for (const auto& f : mesh.faces)
+    for (int k = 0; k < 3; ++k) sum += (mesh.vertices[size_t(f[k])] - mesh.vertices[size_t(f[(k + 1) % 3])]).norm();
+  return mesh.faces.empty() ? 0 : sum / (3.0 * double(mesh.faces.size()));
 }
 }  // namespace
 
@@ -96,6 +166,7 @@ DepthRaster rasterize(const TriMesh& mesh, const std::vector<double>& grey, cons
   r.grey = cv::Mat(r.depth.size(), CV_8U, cv::Scalar(255));
   r.hidden_depth = params.hidden_px / r.px_per_mm / frame.mm_per_unit;
   const std::vector<double> g = grey.empty() ? lambertian(mesh, frame) : grey;
+  cv::Mat behind(r.depth.size(), CV_8U, cv::Scalar(0));
   for (const auto& f : mesh.faces) {
     ScreenVertex t[3];
     for (int k = 0; k < 3; ++k) {
@@ -103,8 +174,10 @@ DepthRaster rasterize(const TriMesh& mesh, const std::vector<double>& grey, cons
       const Vec2 mm = frame.to_mm(p);
       t[k] = {mm.x() * r.px_per_mm, mm.y() * r.px_per_mm, frame.depth(p), g[size_t(f[k])]};
     }
-    draw_triangle(t, r.depth, r.grey);
+    const Vec3 outward = (mesh.vertices[size_t(f[1])] - mesh.vertices[size_t(f[0])]).cross(mesh.vertices[size_t(f[2])] - mesh.vertices[size_t(f[0])]);
+    draw_triangle(t, outward.dot(frame.ahead) > 0, r.depth, r.grey, behind);
   }
+  fill_small_holes(r, behind, std::max(2.0, kSmallHoleEdges * mean_edge_length(mesh) * frame.mm_per_unit * r.px_per_mm));
   return r;
 }
 

@@ -27,7 +27,9 @@ struct PageFrame {
 PageFrame page_frame(const TriMesh& mesh, const PlateView& view, double mm_per_unit);
 
 /// The surface seen from the view at params.dpi: nearest depth per pixel (+inf where there is no
-/// surface) and the grey of the surface there (per-vertex grey interpolated, or Lambertian).
+/// surface) and the grey of the surface there (per-vertex grey interpolated, or Lambertian). The
+/// scan's small holes — at most 3 mean edge lengths (and at least 2 pixels) across, inside the
+/// drawing, where the paper or the surface's back would show as dots — are filled from their rim.
 struct DepthRaster {
   cv::Mat depth;  // CV_64F
   cv::Mat grey;   // CV_8U, 255 off the surface
