@@ -11,6 +11,8 @@
 #   type TEXT        types TEXT into the focused widget
 #   sleep S          waits S seconds
 #   shot FILE.png    saves the whole screen (relative paths: to the current directory)
+#   apply NAME       clicks Apply in the open dialog of the filter NAME, moving the dialog up first
+#                    when its bottom is off the screen (a filter with many parameters)
 # The view and dialogs take a moment to draw: put a sleep before each shot.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -39,6 +41,12 @@ xvfb-run -a -s "-screen 0 1280x900x24 -noreset" bash -c '
       type) xdotool type --delay 50 "$a${b:+ $b}" ;;
       sleep) sleep "$a" ;;
       shot) (cd "$RK_CWD" && import -window root "$a") && echo "screenshot: $a" ;;
+      apply) w=$(xdotool search --onlyvisible --name "^$a${b:+ $b}\$" | head -1)
+             eval "$(xdotool getwindowgeometry --shell "$w")"
+             if [ $((Y + HEIGHT)) -gt 895 ]; then
+               xdotool windowmove "$w" "$X" $((895 - HEIGHT)); sleep 1; eval "$(xdotool getwindowgeometry --shell "$w")"
+             fi
+             xdotool mousemove $((X + WIDTH * 3 / 4)) $((Y + HEIGHT - 20)) click 1 ;;
       *) echo "gui-shots.sh: unknown action $verb" >&2 ;;
     esac
   done <"$RK_ACTIONS"

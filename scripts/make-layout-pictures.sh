@@ -67,4 +67,36 @@ plate_beside_view tablet tablet_plate plate_layout_tablet.png "a tablet in MeshL
 plate_beside_view blade lithic_plate plate_layout_lithic.png "a blade in MeshLab" "Lithic layout with its section"
 plate_beside_view coin coin_two_faces plate_layout_coin.png "a coin in MeshLab" "Two faces, raking light"
 plate_beside_view torso figurine_plate plate_layout_figurine.png "the Cycladic torso in MeshLab" "Figurine layout"
-echo "pictures written to $here/docs/img: plate_default_views.png, plate_shadings_coin.png, plate_shadings_gargoyle.png, plate_layout_tablet.png, plate_layout_lithic.png, plate_layout_coin.png, plate_layout_figurine.png"
+# From the menus: the tablet opened in MeshLab's GUI, the filter found by its search, Layout set to
+# Tablet and Shading to Raking light in its dialog, Apply; the dialog and MeshLab's log beside the plate.
+mkdir -p "$out/gui"; cp "$out/tablet.ply" "$out/gui/"
+cat > "$out/gui/actions.txt" <<'EOT'
+sleep 6
+click 1258 46
+sleep 1
+type Export Illustration Plate
+sleep 1.5
+key Down
+key Return
+sleep 2.5
+# Layout: Tablet; Shading: Raking light
+click 395 376
+sleep 1
+click 417 402
+sleep 1
+click 395 558
+sleep 1
+click 280 659
+sleep 1
+apply Export Illustration Plate
+sleep 15
+shot applied.png
+EOT
+(cd "$out/gui" && "$here/scripts/gui-shots.sh" "$out/gui/actions.txt" -- "$out/gui/tablet.ply" >/dev/null)
+[ -f "$out/gui/tablet-plate.svg" ] || { echo "make-layout-pictures.sh: the plate was not written from MeshLab's dialog" >&2; exit 1; }
+convert "$out/gui/applied.png" -resize x660 "$out/gui/applied_small.png"
+label "$out/gui/applied_small.png" "MeshLab: Layout Tablet, Shading Raking light, Apply"
+rsvg-convert -h 1100 -b white "$out/gui/tablet-plate.svg" | convert - -resize x660 "$out/gui/plate.png"
+label "$out/gui/plate.png" "the plate it wrote"
+convert "$out/gui/applied_small.png" "$out/gui/plate.png" -background white -gravity north +append "$here/docs/img/plate_gui_tablet.png"
+echo "pictures written to $here/docs/img: plate_default_views.png, plate_shadings_coin.png, plate_shadings_gargoyle.png, plate_layout_tablet.png, plate_layout_lithic.png, plate_layout_coin.png, plate_layout_figurine.png, plate_gui_tablet.png"

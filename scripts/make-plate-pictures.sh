@@ -70,7 +70,7 @@ convert "$work/dialog.png" -crop 556x752+0+0 +repage "$here/docs/img/plate_dialo
 # The same from the menus: Demarcating Curves applied (its Apply, then Close), then the plate at
 # its defaults (Apply); MeshLab's layers and log after it (the plate beside coin.ply).
 { echo "sleep 6"; open_filter "Demarcating Curves"; printf 'click 414 577\nsleep 10\nclick 142 577\nsleep 1\n'
-  open_filter "Export Illustration Plate"; printf 'click 414 733\nsleep 6\nshot applied.png\n'; } > "$work/apply.txt"
+  open_filter "Export Illustration Plate"; printf 'apply Export Illustration Plate\nsleep 6\nshot applied.png\n'; } > "$work/apply.txt"
 (cd "$work" && "$here/scripts/gui-shots.sh" "$work/apply.txt" -- "$work/coin.ply" > /dev/null)
 convert "$work/applied.png" -resize 75% "$here/docs/img/plate_gui_applied.png"
 
