@@ -147,8 +147,6 @@ std::string number(double x) {
 
 constexpr double kOneSided = 0.1;  // a back facing less than this share of the front's area: a one-sided scan
 
-std::string percent(double share) { return std::to_string(int(std::lround(100 * share))) + " %"; }
-
 // A flat find's frame: the front along `normal`, its least extent (its flattest faces), on the
 // flatter face when `front_flatter`, else on the less flat one; on the scanned face of a scan of one
 // side. The log names the two faces and their bulges.
@@ -175,15 +173,13 @@ ObjectFrame two_sided_frame(const TriMesh& mesh, const Vec3& normal, bool front_
   return f;
 }
 
-// A layout's warning when the scan has (next to) nothing facing away from its front: the back views
-// would show the scan's underside.
-std::string one_sided_warning(const TriMesh& mesh, const ObjectFrame& f, PlateLayout layout) {
-  if (layout == PlateLayout::one_view) return {};
-  const double front = face_towards(mesh, f.front).area, back = face_towards(mesh, -f.front).area;
-  if (!(back < kOneSided * front)) return {};
-  return "Warning: a scan of one side (what faces away from the front is " + percent(back / front) + " of what faces it): "
-         "the views from behind show the scan's underside" +
-         (layout == PlateLayout::two_faces ? std::string("; give the other side's scan as Reverse layer (Two faces).") : std::string("."));
+// The side of `axis` (+axis or -axis) with next to nothing facing it — a scan of one side's
+// unscanned side — or zero when both sides have surface.
+Vec3 unscanned_side(const TriMesh& mesh, const Vec3& axis) {
+  const double plus = face_towards(mesh, axis).area, minus = face_towards(mesh, -axis).area;
+  if (minus < kOneSided * plus) return -axis;
+  if (plus < kOneSided * minus) return axis;
+  return Vec3::Zero();
 }
 
 // A tablet: the front along its least extent (its flattest faces), the obverse the flatter of the
@@ -236,17 +232,8 @@ void add_layout_section(Plate& plate, const PlatePanel& first, const PageFrame& 
   plate.texts.push_back(PlateText{below, "section", kNameSize});
 }
 
-}  // namespace
-
-ObjectFrame object_frame(const TriMesh& mesh, PlateLayout layout, bool turn_over, bool upside_down) {
-  ObjectFrame f = layout == PlateLayout::tablet ? tablet_frame(mesh) : layout == PlateLayout::lithic ? lithic_frame(mesh) : viewed_frame(mesh);
-  if (turn_over) f.front = -f.front, f.how += "; turned over";
-  if (upside_down) f.up = -f.up, f.how += "; upside down";
-  f.warning = one_sided_warning(mesh, f, layout);
-  return f;
-}
-
-std::vector<LayoutView> layout_views(PlateLayout layout, const ObjectFrame& f) {
+// The layout's views in their cells (the convention's names, directions and ups).
+std::vector<LayoutView> layout_cells(PlateLayout layout, const ObjectFrame& f) {
   const Vec3 n = f.front, u = f.up, r = u.cross(n);  // r: to the page's right in the front view
   switch (layout) {
     case PlateLayout::one_view:
@@ -262,6 +249,28 @@ std::vector<LayoutView> layout_views(PlateLayout layout, const ObjectFrame& f) {
       return {view("front", -n, u, 0, 0), view("right side", r, u, 1, 0), view("back", n, u, 2, 0)};
   }
   return {};
+}
+
+}  // namespace
+
+ObjectFrame object_frame(const TriMesh& mesh, PlateLayout layout, bool turn_over, bool upside_down) {
+  ObjectFrame f = layout == PlateLayout::tablet ? tablet_frame(mesh) : layout == PlateLayout::lithic ? lithic_frame(mesh) : viewed_frame(mesh);
+  if (turn_over) f.front = -f.front, f.how += "; turned over";
+  if (upside_down) f.up = -f.up, f.how += "; upside down";
+  f.unscanned = unscanned_side(mesh, f.front);
+  if (f.unscanned != Vec3::Zero() && layout != PlateLayout::one_view)
+    f.warning = std::string("Warning: a scan of one side (next to nothing faces its ") + (f.unscanned.dot(f.front) > 0 ? "front" : "back") +
+                "): the views of that side show the scan's underside, named \"(not scanned)\"" +
+                (layout == PlateLayout::two_faces ? "; give the other side's scan as Reverse layer (Two faces)." : ".");
+  return f;
+}
+
+// The layout's views, those of a scan's unscanned side named "(not scanned)".
+std::vector<LayoutView> layout_views(PlateLayout layout, const ObjectFrame& f) {
+  std::vector<LayoutView> views = layout_cells(layout, f);
+  for (LayoutView& v : views)
+    if (-v.view.direction.dot(f.unscanned) > 0.5) v.name += " (not scanned)", v.view.name = v.name;
+  return views;
 }
 
 Plate make_layout_plate(const TriMesh& mesh, const std::vector<double>& grey, const std::vector<PlateCurves>& layers,

@@ -200,9 +200,10 @@ TEST(PlateFilter, ANaNScaleAndAMissingFolderAreRefused) {
   EXPECT_NE(run.output.find("could not be written to /no/such/folder/p.svg"), std::string::npos) << run.output;
 }
 
-// A layout through meshlabserver: the disc relief as a tablet (six views named on the plate, one
-// scale bar), under openness with a light stack of 4 (the images and the .lp file beside it); two
-// faces asked of a layer that is not there: a clear message.
+// A layout through meshlabserver: the disc relief as a tablet (six views named on the plate, the
+// reverse of this scan of one side "(not scanned)" with the log's warning; one scale bar), under
+// openness with a light stack of 4 (the images and the .lp file beside it); two faces asked of a
+// layer that is not there: a clear message.
 TEST(PlateFilter, ATabletLayoutWithALightStackAndAMissingReverseLayer) {
   const Relief r = disc_on_plane({}, 60);
   PlateOptions o;
@@ -212,7 +213,8 @@ TEST(PlateFilter, ATabletLayoutWithALightStackAndAMissingReverseLayer) {
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("Plate layout: "), std::string::npos) << run.output;
   const std::string svg = read_text(dir + "/tablet.svg");
-  for (const char* name : {">obverse<", ">reverse<", ">top edge<", ">bottom edge<", ">left edge<", ">right edge<"})
+  EXPECT_NE(run.output.find("Warning: a scan of one side"), std::string::npos) << run.output;
+  for (const char* name : {">obverse<", ">reverse (not scanned)<", ">top edge<", ">bottom edge<", ">left edge<", ">right edge<"})
     EXPECT_NE(svg.find(name), std::string::npos) << name;
   EXPECT_EQ(svg.find("<g id=\"scale bar\""), svg.rfind("<g id=\"scale bar\""));  // one scale bar
   const std::string lp = read_text(dir + "/tablet.lp");

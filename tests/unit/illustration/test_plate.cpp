@@ -605,6 +605,12 @@ TEST(PlateLayout, AScanOfOneSideIsDrawnFromItsScannedFace) {
     EXPECT_NE(f.warning.find("a scan of one side"), std::string::npos) << int(layout);
   }
   EXPECT_NE(object_frame(relief, PlateLayout::two_faces).warning.find("Reverse layer"), std::string::npos);
+  std::vector<std::string> names;  // the views of the unscanned side say so, whichever way the scan is turned
+  for (const LayoutView& v : layout_views(PlateLayout::tablet, object_frame(relief, PlateLayout::tablet))) names.push_back(v.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"obverse", "top edge", "left edge", "right edge", "bottom edge", "reverse (not scanned)"}));
+  const ObjectFrame turned = object_frame(relief, PlateLayout::tablet, true);
+  EXPECT_EQ(layout_views(PlateLayout::tablet, turned).front().name, "obverse (not scanned)");
+  EXPECT_EQ(layout_views(PlateLayout::tablet, turned).back().name, "reverse");
   EXPECT_EQ(object_frame(relief, PlateLayout::one_view).warning, "");
   rktest::TabletOptions o;
   o.levels = 4;

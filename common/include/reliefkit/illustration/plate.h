@@ -204,16 +204,19 @@ enum class PlateLayout {
 ///   along it) down and the tip up;
 /// - the others: default_view's (the side MeshLab shows first, the scan's y up unless the object
 ///   lies on its side).
-/// `turn_over` swaps front and back, `upside_down` turns up down; `how` says what was found, and
-/// `warning` (else empty) that the scan has next to nothing facing away from the front (a scan of
-/// one side: the layout's views from behind show its underside).
+/// `turn_over` swaps front and back, `upside_down` turns up down; `how` says what was found.
+/// `unscanned`: for a scan of one side (under a tenth of the area facing the front faces the back,
+/// or the other way round), the outward direction of the side it lacks (else zero); then `warning`
+/// (else empty) says that the layout's views of that side, named "(not scanned)", show its underside.
 struct ObjectFrame {
   Vec3 front{0, 0, 1}, up{0, 1, 0};
   std::string how, warning;
+  Vec3 unscanned = Vec3::Zero();
 };
 ObjectFrame object_frame(const TriMesh& mesh, PlateLayout layout, bool turn_over = false, bool upside_down = false);
 
-/// A view of a layout: its name ("obverse", "top edge"...), its direction and up, and its cell.
+/// A view of a layout: its name ("obverse", "top edge"...; "reverse (not scanned)" for a view of a
+/// scan's unscanned side), its direction and up, and its cell.
 /// The first of a layout's views is its main one (the obverse, dorsal face, front): the one a
 /// section cuts and a light stack is taken from.
 struct LayoutView {
