@@ -38,7 +38,8 @@ constexpr const char* kUsage =
     "  -p, --param NAME=VALUE       its parameters by name (repeat; the rest at their defaults);\n"
     "                               {input} in a text value is the file's path\n"
     "options:\n"
-    "  -j, --jobs N                 files handled at once (default 1)\n"
+    "  -j, --jobs N                 files handled at once (default 1); each job's filters use cores / N threads\n"
+    "                               (OMP_NUM_THREADS, when not set) and wait passively (OMP_WAIT_POLICY)\n"
     "  --memory-cap SIZE            memory of all jobs together, e.g. 16G or 900M (default 90 % of the machine's);\n"
     "                               a job over cap / jobs is stopped and recorded as \"memory\"\n"
     "  --shard i/N                  process shard i of N (default: the Slurm job array's task, else all)\n"
@@ -185,8 +186,10 @@ int run_collection(Options& o) {
     fs::remove(result_path(o.output, rel));
     todo.push_back({fs::absolute(f).string(), rel});
   }
-  std::printf("reliefkit-batch: %zu files in %s; shard %s: %zu, %zu done before, %zu to do, %d at a time\n", all.size(),
-              o.input.c_str(), shard.c_str(), mine.size(), mine.size() - todo.size(), todo.size(), o.jobs);
+  const char* threads = std::getenv("OMP_NUM_THREADS");
+  std::printf("reliefkit-batch: %zu files in %s; shard %s: %zu, %zu done before, %zu to do, %d at a time, %s threads each\n",
+              all.size(), o.input.c_str(), shard.c_str(), mine.size(), mine.size() - todo.size(), todo.size(), o.jobs,
+              threads ? threads : std::to_string(std::max(1, usable_cores() / o.jobs)).c_str());
   std::fflush(stdout);
   RunOptions ro{o.jobs, o.memory_cap_mib > 0 ? o.memory_cap_mib : machine_memory_mib() * 9 / 10, worker_command(o, shard),
                 o.output, shard};

@@ -3,11 +3,13 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sched.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <deque>
@@ -42,7 +44,7 @@ long status_field_kib(pid_t pid, const char* key) {
 // posix_spawn, not fork: the supervisor resumes only once the worker runs its own program, so the
 // memory watch never reads the resident size of a copy of the supervisor (an instrumented test
 // binary's copy is over a small share of the cap).
-Worker start_worker(size_t index, const Job& job, const RunOptions& o) {
+Worker start_worker(size_t index, const Job& job, const RunOptions& o, const std::vector<std::string>& env) {
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error("pipe failed");  // no other worker inherits it
   std::vector<std::string> args = o.worker;
@@ -51,12 +53,15 @@ Worker start_worker(size_t index, const Job& job, const RunOptions& o) {
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  std::vector<char*> envp;
+  for (const auto& e : env) envp.push_back(const_cast<char*>(e.c_str()));
+  envp.push_back(nullptr);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, fds[1], STDOUT_FILENO);
   posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
   pid_t pid = -1;
-  const int failed = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  const int failed = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   if (failed) {
     close(fds[0]);
@@ -156,8 +161,27 @@ long machine_memory_mib() {
   return 0;
 }
 
+int usable_cores() {
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) != 0) return 1;
+  return std::max(1, CPU_COUNT(&set));
+}
+
+std::vector<std::string> worker_environment(const std::vector<std::string>& parent, int cores, int jobs) {
+  std::vector<std::string> env = parent;
+  auto given = [&](const std::string& name) {
+    return std::any_of(env.begin(), env.end(), [&](const std::string& e) { return e.rfind(name + "=", 0) == 0; });
+  };
+  if (!given("OMP_NUM_THREADS")) env.push_back("OMP_NUM_THREADS=" + std::to_string(std::max(1, cores / std::max(1, jobs))));
+  if (!given("OMP_WAIT_POLICY")) env.push_back("OMP_WAIT_POLICY=PASSIVE");
+  return env;
+}
+
 std::vector<FileResult> run_jobs(const std::vector<Job>& jobs, const RunOptions& o,
                                  const std::function<void(const std::string&)>& say) {
+  std::vector<std::string> parent;
+  for (char** e = environ; *e; ++e) parent.emplace_back(*e);
+  const std::vector<std::string> env = worker_environment(parent, usable_cores(), o.jobs);
   std::vector<FileResult> results(jobs.size());
   std::vector<Worker> running;
   size_t next = 0, done = 0;
@@ -165,7 +189,7 @@ std::vector<FileResult> run_jobs(const std::vector<Job>& jobs, const RunOptions&
   while (done < jobs.size()) {
     while (running.size() < size_t(std::max(1, o.jobs)) && next < jobs.size()) {
       say(tag(next) + "started");
-      running.push_back(start_worker(next, jobs[next], o));
+      running.push_back(start_worker(next, jobs[next], o, env));
       ++next;
     }
     std::vector<pollfd> fds;

@@ -31,4 +31,13 @@ std::vector<FileResult> run_jobs(const std::vector<Job>& jobs, const RunOptions&
 /// The machine's memory in MiB (MemTotal).
 long machine_memory_mib();
 
+/// The cores this process may run on (its CPU affinity; at least 1).
+int usable_cores();
+
+/// A worker's environment: `parent` ("NAME=value" entries) with each job's share of the cores
+/// for OpenMP, OMP_NUM_THREADS = cores / jobs (at least 1), and OMP_WAIT_POLICY=PASSIVE (a thread
+/// waiting at a barrier sleeps instead of spinning on a core another job needs); either variable
+/// the caller set is kept as it is.
+std::vector<std::string> worker_environment(const std::vector<std::string>& parent, int cores, int jobs);
+
 }  // namespace reliefkit::batch

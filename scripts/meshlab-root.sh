@@ -36,18 +36,7 @@ if [ -f "$root/.reliefkit-recipe" ] && [ "$(cat "$root/.reliefkit-recipe")" = "$
 fi
 [ "$(id -u)" -eq 0 ] || { echo "$me: making the $name root needs root (debootstrap, chroot)" >&2; exit 1; }
 
-# The host's Debian mirror (its package sources name it): the root is fetched from the same one.
-host_mirror() {
-  local uri=""
-  if [ -f /etc/apt/sources.list.d/debian.sources ]; then
-    uri="$(awk '/^URIs:/ {print $2}' /etc/apt/sources.list.d/debian.sources | grep -v -- '-security' | head -1)"
-  fi
-  if [ -z "$uri" ] && [ -f /etc/apt/sources.list ]; then
-    uri="$(awk '$1 == "deb" && $2 !~ /security/ {print $2; exit}' /etc/apt/sources.list)"
-  fi
-  [ -n "$uri" ] || { echo "$me: no Debian mirror found in the host's apt sources" >&2; exit 1; }
-  echo "$uri"
-}
+source "$(dirname "${BASH_SOURCE[0]}")/debian-mirror.sh"
 
 mounted=()
 unmount_all() {

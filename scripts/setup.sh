@@ -21,7 +21,8 @@ PKGS=(meshlab build-essential cmake ninja-build ccache pkg-config dpkg-dev
       libglew-dev libglu1-mesa-dev libeigen3-dev libsuitesparse-dev libopenblas0-pthread libopencv-dev nlohmann-json3-dev libcgal-dev libgmp-dev libmpfr-dev
       libgtest-dev libgmock-dev xvfb xauth x11-utils xdotool imagemagick time
       clang libclang-rt-14-dev libomp-14-dev
-      slurm-wlm munge parallel debootstrap librsvg2-bin poppler-utils)
+      slurm-wlm munge parallel debootstrap librsvg2-bin poppler-utils
+      git python3 procps)  # the tests' source-tree check, the function-length check, pgrep/pkill
 
 missing=()
 for p in "${PKGS[@]}"; do

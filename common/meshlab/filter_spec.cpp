@@ -8,6 +8,7 @@
 
 #include "reliefkit/base/memory.h"
 #include "reliefkit/base/mesh.h"
+#include "reliefkit/base/openmp_waiting.h"
 #include "reliefkit/base/work_counts.h"
 
 namespace reliefkit::ml {
@@ -37,6 +38,7 @@ int post_conditions(const FilterSpec& s) {
 QString run_filter(const FilterSpec& s, FilterCall& call) {
   if (call.current == nullptr && s.needs_mesh) return "there is no mesh layer to work on; open a mesh first.";
   try {
+    reliefkit::wait_passively_in_openmp();  // beside other busy programs, waiting threads sleep
     reliefkit::reset_work_counts();
     // One run: freed blocks reused, huge pages on the heap it will use, all returned at the end.
     const size_t faces = call.current ? size_t(std::max(0, call.current->cm.FN())) : 0;

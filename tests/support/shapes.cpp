@@ -214,11 +214,17 @@ std::vector<double> distance_to_surface(const TriMesh& mesh, const std::vector<V
   return out;
 }
 
+Vec3 gauss_vec3(std::normal_distribution<double>& gauss, std::mt19937& rng) {
+  const double z = gauss(rng), y = gauss(rng), x = gauss(rng);
+  return {x, y, z};
+}
+
 void place_randomly(TriMesh& mesh, Vec3& axis_point, Vec3& axis_direction, std::mt19937& rng,
                     std::normal_distribution<double>& gauss, double spread) {
-  Eigen::Quaterniond q(gauss(rng), gauss(rng), gauss(rng), gauss(rng));
+  const Vec3 axis = gauss_vec3(gauss, rng);
+  Eigen::Quaterniond q(gauss(rng), axis.x(), axis.y(), axis.z());
   q.normalize();
-  const Vec3 shift(spread * gauss(rng), spread * gauss(rng), spread * gauss(rng));
+  const Vec3 shift = spread * gauss_vec3(gauss, rng);
   for (Vec3& p : mesh.vertices) p = q * p + shift;
   axis_point = q * axis_point + shift, axis_direction = q * axis_direction;
 }

@@ -22,6 +22,11 @@ void torus_params(double R, double r, const Vec3& p, double& u, double& v);
 // Sphere of radius r: a subdivided icosahedron projected on the sphere (levels >= 0).
 TriMesh sphere(double r, int levels, double jitter = 0, uint32_t seed = 1);
 
+/// Three draws of `gauss` as a vector, z drawn first and x last: the order GCC gave
+/// Vec3(gauss(rng), gauss(rng), gauss(rng)) when the generators' known answers were measured (C++
+/// leaves a call's argument order open; clang draws x first).
+Vec3 gauss_vec3(std::normal_distribution<double>& gauss, std::mt19937& rng);
+
 /// Moves `mesh` by a random rotation and a translation of about `spread` per coordinate (the
 /// generators' random pose; `gauss` draws from `rng`), and the axis (point, direction) with it.
 void place_randomly(TriMesh& mesh, Vec3& axis_point, Vec3& axis_direction, std::mt19937& rng,

@@ -155,7 +155,7 @@ Sherd make_sherd(const SherdOptions& o) {
       Vec2 rz = loop[k];
       if (o.irregular && k > 0 && k + 1 < outer.size()) rz = outer[k] + (uniform(rng) - 0.5) * 0.8 * (outer[k + 1] - outer[k]);
       Vec3 p = at(theta, rz, groove(theta, k));
-      if (rough[k]) p += kBreakRoughness * Vec3(gauss(rng), gauss(rng), gauss(rng));
+      if (rough[k]) p += kBreakRoughness * rktest::gauss_vec3(gauss, rng);
       grid[size_t(i)][k] = b.add(p);
     }
   }
@@ -191,7 +191,7 @@ Sherd make_sherd(const SherdOptions& o) {
       std::vector<int> middle(O);
       for (size_t k = 0; k < O; ++k) {
         const Vec3 p = (b.mesh.vertices[size_t(column[k])] + b.mesh.vertices[size_t(inner_at(k))]) / 2;
-        middle[k] = b.add(p + kBreakRoughness * Vec3(gauss(rng), gauss(rng), gauss(rng)));
+        middle[k] = b.add(p + kBreakRoughness * rktest::gauss_vec3(gauss, rng));
       }
       for (size_t k = 0; k + 1 < O; ++k) {
         b.break_face(column[k], column[k + 1], middle[k + 1], side), b.break_face(column[k], middle[k + 1], middle[k], side);
@@ -202,7 +202,7 @@ Sherd make_sherd(const SherdOptions& o) {
       if (!sh.has_base)  // the bottom break
         for (size_t j = 0; j < size_t(cap); ++j) b.break_face(middle.front(), column[n - size_t(cap) + j], column[(n - size_t(cap) + j + 1) % n], side);
     }
-  for (Vec3& p : b.mesh.vertices) p += o.noise * o.edge * Vec3(gauss(rng), gauss(rng), gauss(rng));
+  for (Vec3& p : b.mesh.vertices) p += o.noise * o.edge * rktest::gauss_vec3(gauss, rng);
   sh.mesh = std::move(b.mesh);
   sh.axis_point = Vec3::Zero(), sh.axis_direction = Vec3::UnitZ();
   if (o.random_pose) place_randomly(sh.mesh, sh.axis_point, sh.axis_direction, rng, gauss, 100);

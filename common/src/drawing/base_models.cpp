@@ -233,7 +233,10 @@ void cup_parts(ModelParts& m, const Uniform& U, int) {
   const double rr = U(0.33, 0.45), rb = rr * U(0.55, 0.75), rm = rr * U(0.95, 1.1);
   m.knots = {{0, rb}, {0.08, rb * 1.05}, {0.4, rm}, {0.85, rr * 0.97}, {1, rr}};
   m.rz = revolution_profile(m.knots);
-  append(m.extra, side_handle(m.rz, -1, U(0.2, 0.3), U(0.75, 0.85), U(0.2, 0.3), 0.035));
+  // Drawn last argument first (C++ leaves the order of a call's arguments open: GCC made the
+  // library that way, clang would draw another cup).
+  const double out = U(0.2, 0.3), z1 = U(0.75, 0.85), z0 = U(0.2, 0.3);
+  append(m.extra, side_handle(m.rz, -1, z0, z1, out, 0.035));
 }
 
 // Krater: bell on a stemmed foot, two horizontal handles.
@@ -251,7 +254,8 @@ void jug_parts(ModelParts& m, const Uniform& U, int variant) {
   const double rb = U(0.3, 0.4), rn = rb * U(0.35, 0.5);
   m.knots = {{0, 0.6 * rb}, {0.1, 0.85 * rb}, {0.35, rb}, {0.6, 0.85 * rb}, {0.75, rn}, {0.88, rn}, {1, rn * 1.25}};
   m.rz = revolution_profile(m.knots);
-  append(m.extra, side_handle(m.rz, -1, U(0.5, 0.6), 0.93, U(0.15, 0.25), 0.035));
+  const double out = U(0.15, 0.25), z0 = U(0.5, 0.6);  // last argument first, as for the cup
+  append(m.extra, side_handle(m.rz, -1, z0, 0.93, out, 0.035));
   if (variant % 2 == 1) m.bumps.push_back({0, U(0.12, 0.22), 0.35, 1.0, 0.08});
 }
 

@@ -3,6 +3,7 @@
 // stopped, jobs in parallel.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -141,4 +142,41 @@ TEST(BatchSupervisor, AWorkerIsMeasuredAsItselfNotAsACopyOfALargeSupervisor) {
   for (const auto& r : results) stopped += r.status == "memory";
   EXPECT_EQ(stopped, 0);
   EXPECT_EQ(ballast.back(), 1);
+}
+
+// Each job gets its share of the cores and passive waiting; what the caller set stays.
+TEST(BatchSupervisor, EachWorkerGetsItsShareOfTheCoresAndWaitsPassively) {
+  auto value = [](const std::vector<std::string>& env, const std::string& name) {
+    std::string found = "(unset)";
+    int count = 0;
+    for (const auto& e : env)
+      if (e.rfind(name + "=", 0) == 0) found = e.substr(name.size() + 1), ++count;
+    return count > 1 ? "(twice)" : found;
+  };
+  const std::vector<std::string> plain{"PATH=/usr/bin", "HOME=/root"};
+  EXPECT_EQ(value(worker_environment(plain, 8, 1), "OMP_NUM_THREADS"), "8");
+  EXPECT_EQ(value(worker_environment(plain, 8, 2), "OMP_NUM_THREADS"), "4");
+  EXPECT_EQ(value(worker_environment(plain, 8, 3), "OMP_NUM_THREADS"), "2");
+  EXPECT_EQ(value(worker_environment(plain, 2, 4), "OMP_NUM_THREADS"), "1");
+  EXPECT_EQ(value(worker_environment(plain, 2, 2), "OMP_WAIT_POLICY"), "PASSIVE");
+  EXPECT_EQ(value(worker_environment(plain, 2, 2), "PATH"), "/usr/bin");
+  const std::vector<std::string> set{"OMP_NUM_THREADS=3", "OMP_WAIT_POLICY=ACTIVE"};
+  EXPECT_EQ(value(worker_environment(set, 8, 2), "OMP_NUM_THREADS"), "3");
+  EXPECT_EQ(value(worker_environment(set, 8, 2), "OMP_WAIT_POLICY"), "ACTIVE");
+  EXPECT_GE(usable_cores(), 1);
+}
+
+// The environment reaches the workers: a worker prints what it was given.
+TEST(BatchSupervisor, WorkersRunWithTheirShareOfThreads) {
+  const std::string out = fresh_dir("rk_batch_threads");
+  RunOptions o;
+  o.jobs = 2 * usable_cores();
+  o.worker = {"/bin/sh", "-c", "echo \"threads=$OMP_NUM_THREADS policy=$OMP_WAIT_POLICY\"", "sh", out};
+  o.output = out;
+  o.shard = "0/1";
+  std::vector<std::string> lines;
+  unsetenv("OMP_NUM_THREADS");
+  unsetenv("OMP_WAIT_POLICY");
+  run_jobs({{"/x/a.ply", "a.ply"}}, o, [&](const std::string& l) { lines.push_back(l); });
+  EXPECT_NE(std::find(lines.begin(), lines.end(), "[1/1 a.ply] threads=1 policy=PASSIVE"), lines.end());
 }

@@ -1,0 +1,55 @@
+// ReliefKit — OpenMP threads that wait without taking a core. See openmp_waiting.h.
+#include "reliefkit/base/openmp_waiting.h"
+
+#include <dlfcn.h>
+#include <omp.h>
+
+#include <condition_variable>
+#include <cstdlib>
+#include <mutex>
+#include <thread>
+
+namespace reliefkit {
+namespace {
+
+constexpr const char* kMark = "RELIEFKIT_OPENMP_WAITING";
+
+bool runtime_is_libgomp() { return dlsym(RTLD_DEFAULT, "GOMP_parallel") != nullptr; }
+
+// A thread that runs one team of two and then sleeps for good: its pool keeps the team's second
+// thread, docked and asleep, counted among the threads libgomp manages.
+void park_one_team_of_two() {
+  std::mutex m;
+  std::condition_variable started;
+  bool ready = false;
+  std::thread([&] {
+#pragma omp parallel num_threads(2)
+    {
+    }
+    {
+      std::lock_guard<std::mutex> lock(m);  // the caller returns only once this is released
+      ready = true;
+      started.notify_one();
+    }
+    std::mutex forever;
+    std::unique_lock<std::mutex> hold(forever);
+    std::condition_variable never;
+    never.wait(hold, [] { return false; });
+  }).detach();
+  std::unique_lock<std::mutex> lock(m);
+  started.wait(lock, [&] { return ready; });
+}
+
+}  // namespace
+
+bool wait_passively_in_openmp() {
+  static std::mutex once;
+  std::lock_guard<std::mutex> lock(once);
+  if (std::getenv(kMark)) return true;
+  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT") || !runtime_is_libgomp()) return false;
+  park_one_team_of_two();
+  setenv(kMark, "1", 1);
+  return true;
+}
+
+}  // namespace reliefkit
