@@ -3,10 +3,13 @@
 # no MeshLab, no compiler cache, no MeshLab 2022.02/2025.07 roots), a fresh clone of COMMIT in it
 # with a read-only copy of shared/ beside it, then `CI=true bash .ci/run` there. Prints CI's own
 # stage table and the wall time. Needs root (debootstrap, chroot, mount); the root is made anew.
-#   scripts/cold-ci.sh [COMMIT] [ROOT]      (default: HEAD, /var/tmp/reliefkit-cold-ci)
+# With --warm, the root of an earlier run is kept (its packages, compiler cache and MeshLab roots:
+# a developer's machine, CI's next run) and only the clone is new.
+#   scripts/cold-ci.sh [--warm] [COMMIT] [ROOT]      (default: HEAD, /var/tmp/reliefkit-cold-ci)
 #   RELIEFKIT_SHARED=DIR                    (default: ../shared beside this clone)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+warm=false; [ "${1:-}" = --warm ] && { warm=true; shift; }
 commit="$(git -C "$here" rev-parse "${1:-HEAD}")"
 root="${2:-/var/tmp/reliefkit-cold-ci}"
 shared="${RELIEFKIT_SHARED:-$here/../shared}"
@@ -31,12 +34,17 @@ umount -R -l "$root"/{proc,sys,dev,ci/shared} 2>/dev/null || true
 # Nothing of the host may still be mounted inside the old root when it is removed.
 ! awk '{print $2}' /proc/mounts | grep -q "^$root/" ||
   { echo "cold-ci.sh: mounts left under $root (see /proc/mounts): unmount them first" >&2; exit 1; }
-rm -rf "$root"
-echo "cold-ci.sh: a bare Debian 12 root in $root"
-debootstrap --variant=minbase bookworm "$root" "$(host_mirror)" >"$root.debootstrap.log" 2>&1 ||
-  { tail -20 "$root.debootstrap.log" >&2; exit 1; }
-cp /etc/apt/apt.conf.d/* "$root/etc/apt/apt.conf.d/" 2>/dev/null || true
-cp -L /etc/resolv.conf "$root/etc/resolv.conf"
+if $warm && [ -x "$root/usr/bin/apt-get" ]; then
+  echo "cold-ci.sh: the root of the last run in $root, kept (--warm); a fresh clone"
+  rm -rf "$root/ci/main"
+else
+  rm -rf "$root"
+  echo "cold-ci.sh: a bare Debian 12 root in $root"
+  debootstrap --variant=minbase bookworm "$root" "$(host_mirror)" >"$root.debootstrap.log" 2>&1 ||
+    { tail -20 "$root.debootstrap.log" >&2; exit 1; }
+  cp /etc/apt/apt.conf.d/* "$root/etc/apt/apt.conf.d/" 2>/dev/null || true
+  cp -L /etc/resolv.conf "$root/etc/resolv.conf"
+fi
 git clone -q "$here" "$root/ci/main"
 git -C "$root/ci/main" checkout -q "$commit"
 mkdir -p "$root/proc" "$root/sys"

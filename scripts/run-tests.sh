@@ -48,9 +48,10 @@ wait_in_background() {  # NAME: its end and its output
 }
 
 stage "set-up (Debian's packages, MeshLab 2020.09's sources)" bash "$here/scripts/setup.sh"
-# The MeshLab 2022.02 and 2025.07 roots (downloads and unpacking) are made or checked meanwhile.
+# The MeshLab 2022.02 and 2025.07 roots (downloads and unpacking) are made or checked meanwhile, at
+# the lowest priority: the builds in front keep the cores.
 if [ "$(id -u)" -eq 0 ]; then
-  for release in 2022 2025; do start_in_background "root-$release" 0 bash "$here/scripts/meshlab-root.sh" "$release"; done
+  for release in 2022 2025; do start_in_background "root-$release" 19 bash "$here/scripts/meshlab-root.sh" "$release"; done
 fi
 stage "Release build (libraries, plugins, tests, benchmarks)" bash "$here/scripts/build.sh"
 start_virtual_display
