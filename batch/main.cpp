@@ -189,7 +189,7 @@ int run_collection(Options& o) {
   const char* threads = std::getenv("OMP_NUM_THREADS");
   std::printf("reliefkit-batch: %zu files in %s; shard %s: %zu, %zu done before, %zu to do, %d at a time, %s threads each\n",
               all.size(), o.input.c_str(), shard.c_str(), mine.size(), mine.size() - todo.size(), todo.size(), o.jobs,
-              threads ? threads : std::to_string(std::max(1, usable_cores() / o.jobs)).c_str());
+              threads ? threads : std::to_string(threads_per_job(usable_cores(), o.jobs)).c_str());
   std::fflush(stdout);
   RunOptions ro{o.jobs, o.memory_cap_mib > 0 ? o.memory_cap_mib : machine_memory_mib() * 9 / 10, worker_command(o, shard),
                 o.output, shard};

@@ -167,12 +167,14 @@ int usable_cores() {
   return std::max(1, CPU_COUNT(&set));
 }
 
+int threads_per_job(int cores, int jobs) { return std::max(1, cores / std::max(1, jobs)); }
+
 std::vector<std::string> worker_environment(const std::vector<std::string>& parent, int cores, int jobs) {
   std::vector<std::string> env = parent;
   auto given = [&](const std::string& name) {
     return std::any_of(env.begin(), env.end(), [&](const std::string& e) { return e.rfind(name + "=", 0) == 0; });
   };
-  if (!given("OMP_NUM_THREADS")) env.push_back("OMP_NUM_THREADS=" + std::to_string(std::max(1, cores / std::max(1, jobs))));
+  if (!given("OMP_NUM_THREADS")) env.push_back("OMP_NUM_THREADS=" + std::to_string(threads_per_job(cores, jobs)));
   if (!given("OMP_WAIT_POLICY")) env.push_back("OMP_WAIT_POLICY=PASSIVE");
   return env;
 }

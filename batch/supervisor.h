@@ -34,6 +34,9 @@ long machine_memory_mib();
 /// The cores this process may run on (its CPU affinity; at least 1).
 int usable_cores();
 
+/// OpenMP threads of each of `jobs` workers on `cores` cores: cores / jobs, at least 1.
+int threads_per_job(int cores, int jobs);
+
 /// A worker's environment: `parent` ("NAME=value" entries) with each job's share of the cores
 /// for OpenMP, OMP_NUM_THREADS = cores / jobs (at least 1), and OMP_WAIT_POLICY=PASSIVE (a thread
 /// waiting at a barrier sleeps instead of spinning on a core another job needs); either variable
