@@ -30,11 +30,21 @@ esac
 me="meshlab-root.sh $release"
 recipe="$(printf '%s\n' "$suite minbase" "${PKGS[@]}" | sha256sum | cut -c1-16)"
 
-if [ -f "$root/.reliefkit-recipe" ] && [ "$(cat "$root/.reliefkit-recipe")" = "$recipe" ]; then
+root_ready() { [ -f "$root/.reliefkit-recipe" ] && [ "$(cat "$root/.reliefkit-recipe")" = "$recipe" ]; }
+if root_ready; then
   echo "$root"
   exit 0
 fi
 [ "$(id -u)" -eq 0 ] || { echo "$me: making the $name root needs root (debootstrap, chroot)" >&2; exit 1; }
+# One maker per root: a second run (another CI on the same machine) waits for the first, then finds
+# the root ready.
+mkdir -p "$(dirname "$root")"
+exec 9>"$root.lock"
+flock 9
+if root_ready; then
+  echo "$root"
+  exit 0
+fi
 
 source "$(dirname "${BASH_SOURCE[0]}")/debian-mirror.sh"
 
@@ -62,28 +72,48 @@ if ! command -v debootstrap >/dev/null; then
 fi
 mirror="$(host_mirror)"
 t0=$SECONDS
-if [ ! -x "$root/usr/bin/apt-get" ]; then
-  rm -rf "$root"; mkdir -p "$(dirname "$root")"
+make_root() {  # anything a killed run left mounted inside is let go first: /dev is the host's own
+  awk -v r="$root/" 'index($2, r) == 1 { print $2 }' /proc/mounts | sort -r | xargs -r -n1 umount -l
+  rm -rf --one-file-system "$root"
   echo "$me: debootstrap --variant=minbase $suite $root" >&2
   debootstrap --variant=minbase "$suite" "$root" "$mirror" "$script" > "$root.debootstrap.log" 2>&1 ||
     { tail -20 "$root.debootstrap.log" >&2; echo "$me: debootstrap failed (log: $root.debootstrap.log)" >&2; exit 1; }
-fi
+}
 # The root's own package sources (with deb-src, for `apt-get source meshlab`), the host's apt
 # settings (a frozen mirror's expired Release files accepted as on the host) and name resolution.
-cat > "$root/etc/apt/sources.list.d/debian.sources" <<SOURCES
+write_apt_settings() {
+  cat > "$root/etc/apt/sources.list.d/debian.sources" <<SOURCES
 Types: deb deb-src
 URIs: $mirror
 Suites: $suite
 Components: main
 Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
 SOURCES
-rm -f "$root/etc/apt/sources.list"
-cp /etc/apt/apt.conf.d/* "$root/etc/apt/apt.conf.d/" 2>/dev/null || true
-cp -L /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null || true
+  rm -f "$root/etc/apt/sources.list"
+  cp /etc/apt/apt.conf.d/* "$root/etc/apt/apt.conf.d/" 2>/dev/null || true
+  cp -L /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null || true
+}
+[ -x "$root/usr/bin/apt-get" ] && [ -d "$root/etc/apt/sources.list.d" ] || make_root
+write_apt_settings
 mount_system
-chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get update -qq
-chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${PKGS[@]}" > "$root.install.log" 2>&1 ||
-  { tail -20 "$root.install.log" >&2; echo "$me: installing into the root failed (log: $root.install.log)" >&2; exit 1; }
+# A root whose making was stopped (a killed run) has dpkg's work half done: it is finished first
+# (`dpkg --configure -a`, then apt's own repair); a root that still cannot install is made anew once.
+install_packages() {
+  chroot "$root" env DEBIAN_FRONTEND=noninteractive dpkg --configure -a &&
+    chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get update -qq &&
+    chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq -f --no-install-recommends &&
+    chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${PKGS[@]}"
+} > "$root.install.log" 2>&1
+if ! install_packages; then
+  tail -5 "$root.install.log" >&2
+  echo "$me: the root could not install its packages; making it anew" >&2
+  unmount_all; mounted=()
+  make_root
+  write_apt_settings
+  mount_system
+  install_packages ||
+    { tail -20 "$root.install.log" >&2; echo "$me: installing into the root failed (log: $root.install.log)" >&2; exit 1; }
+fi
 # MeshLab's sources (its plugin API headers and vcglib): the upstream tarball of the suite's source
 # package (apt checks it against the signed index; only the tarball is fetched).
 version="$(chroot "$root" dpkg-query -W -f='${Version}' meshlab)"
