@@ -12,6 +12,7 @@
 #include <omp.h>
 
 #include "bench_util.h"
+#include "reliefkit/base/angles.h"
 #include "reliefkit/prominent/prominent.h"
 #include "reliefs.h"
 #include "shapes.h"
@@ -20,7 +21,6 @@ using namespace reliefkit;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kR1 = 0.4, kR2 = 0.3;  // the discs of rktest::discs_on_cylinder
 
 // Distance in the unrolled (arc, z) plane to the nearest rim, and the unit direction across it.

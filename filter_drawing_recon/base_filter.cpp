@@ -102,10 +102,6 @@ void base_parameters(const MeshModel&, RichParameterList& par) {
   par.addParam(RichInt("matches", 5, "Matches listed", "How many of the best library models the log lists."));
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 // What "Base from Drawing Silhouette" reads.
 struct BaseSettings {
   QString path, views_text, library_dir, user_dir, wanted;

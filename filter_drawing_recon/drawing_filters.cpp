@@ -61,10 +61,6 @@ const QStringList kPlacements = {"Fitted to the layer (along the view direction)
                                  "As drawn (the drawing's frame: DPI and scale)"};
 const QStringList kGrounds = {"The paper around the drawing", "The most connected region (the thesis' heuristic)"};
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 // ---- Shared: the drawing and its curves ----
 
 void drawing_parameters(RichParameterList& par) {

@@ -6,12 +6,12 @@
 
 #include "mesh_bridge.h"
 #include "params.h"
+#include "reliefkit/base/angles.h"
 #include "reliefkit/multiscale/multiscale.h"
 
 namespace reliefkit::ml {
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180;
 constexpr double kAutoMinScale = 1.0, kAutoMaxScale = 16.0, kAutoFinalSmoothing = 0.5;  // edge lengths
 
 const char* kMethod =
@@ -140,10 +140,6 @@ QString histogram(const OptimalScale& s) {
                 .arg(s.levels.back() / h, 0, 'f', 1)
                 .arg(s.scale.object_size / h, 0, 'f', 0);
   return line;
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void write_scale(FilterCall& call, const View& view, const OptimalScale& s) {
@@ -287,7 +283,7 @@ void apply_relief(FilterCall& call) {
   const OptimalScaleOptions o = resolve(call, range, surface.scale());
   const MultiscaleReliefEdges r = multiscale_relief_edges(surface, o, p);
   Polylines edges = r.curves.edges;
-  for (auto& s : edges.strength) s /= kDeg;
+  for (auto& s : edges.strength) s /= kRadiansPerDegree;
   const std::vector<Vec3>& normals = surface.normals();
   const QString label = derived_label(call.mesh(), "multi-scale relief edges");
   add_curve_layer(call.doc, label, edges, vcg::Color4b(0, 0, 0, 255), &normals, lift * r.scale.scale.edge);
@@ -296,13 +292,13 @@ void apply_relief(FilterCall& call) {
                .arg(thousands(static_cast<long long>(r.curves.edges.segments.size())))
                .arg(thousands(static_cast<long long>(r.curves.edges.chains().size())))
                .arg(label)
-               .arg(r.curves.strong_angle / kDeg, 0, 'f', 1)
+               .arg(r.curves.strong_angle / kRadiansPerDegree, 0, 'f', 1)
                .arg(seconds_since(t0), 0, 'f', 2));
   call.log(histogram(r.scale));
   if (r.curves.edges.segments.empty())
     call.log(QString("No relief edge passed the thresholds: the layer is empty (meshlabserver then reports \"Failed "
                      "saving\" for it). The steepest edge crossing seen tilts by %1 deg.")
-                 .arg(r.curves.steepest_crossing / kDeg, 0, 'f', 1));
+                 .arg(r.curves.steepest_crossing / kRadiansPerDegree, 0, 'f', 1));
 }
 
 constexpr auto kLayers = ml::FilterInterface::FilterClass(ml::FilterInterface::Normal | ml::FilterInterface::Layer);

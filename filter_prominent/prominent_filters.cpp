@@ -5,12 +5,12 @@
 
 #include "mesh_bridge.h"
 #include "params.h"
+#include "reliefkit/base/angles.h"
 #include "reliefkit/prominent/prominent.h"
 
 namespace reliefkit::ml {
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180;
 
 const char* kCitation =
     "M. Kolomenkin, I. Shimshoni, A. Tal, <b>\"Prominent field for shape processing and analysis of archaeological "
@@ -61,10 +61,6 @@ const QStringList kFieldQuality = {"Prominent curvature (along the field)", "Con
 const QStringList kColoringCurvature = {"Prominent curvature (along the field)", "Mean curvature",
                                         "Maximal curvature (largest |curvature|)"};
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 // ---- Parameters every filter of the plugin shares (the field's) ----
 
 void field_parameters(RichParameterList& par) {
@@ -101,7 +97,7 @@ void log_field(FilterCall& call, const ProminentFieldResult& f, const ProminentF
                .arg(p.theta, 0, 'g', 3)
                .arg(f.curvature_threshold * 2 / p.theta, 0, 'g', 3)
                .arg(f.curvature_threshold * 2 / p.theta * f.scale.edge, 0, 'g', 3)
-               .arg(f.tilt_threshold * 2 / p.theta / kDeg, 0, 'f', 1)
+               .arg(f.tilt_threshold * 2 / p.theta / kRadiansPerDegree, 0, 'f', 1)
                .arg(f.scale.edge > 0 ? f.base_scale / f.scale.edge : 0.0, 0, 'f', 1));
   if (f.ridge_points + f.edge_points == 0)
     call.log("Warning: no vertex passed the feature thresholds, so nothing fixes the field: it follows the local "

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <tuple>
 
+#include "reliefkit/base/angles.h"
 #include "reliefkit/relief_edges/base_normals.h"
 #include "mesh_bridge.h"
 #include "params.h"
@@ -13,7 +14,6 @@
 namespace reliefkit::ml {
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180;
 
 const char* kReliefInfo =
     "Draws <b>relief edges</b>: the edges of a relief as if it were an image printed on the smooth "
@@ -97,8 +97,8 @@ ReliefEdgeParams read_relief_parameters(FilterCall& call) {
   p.restrict_orientation = read_bool(call, "restrict", "Use the base surface for directions");
   p.strong_error = read_float(call, "strong_error", "Model error, strong edges", 0, 1);
   p.weak_error = std::max(read_float(call, "weak_error", "Model error, weak edges", 0, 1), p.strong_error);
-  p.strong_angle = read_float(call, "strong_angle", "Steepness, strong edges (degrees)", 0, 90) * kDeg;
-  p.weak_angle = read_float(call, "weak_angle", "Steepness, weak edges (degrees)", 0, 90) * kDeg;
+  p.strong_angle = read_float(call, "strong_angle", "Steepness, strong edges (degrees)", 0, 90) * kRadiansPerDegree;
+  p.weak_angle = read_float(call, "weak_angle", "Steepness, weak edges (degrees)", 0, 90) * kRadiansPerDegree;
   p.min_length_edges = read_float(call, "min_length", "Minimum curve length", 0, 1e6);
   p.link_gap_edges = read_float(call, "gap", "Bridge gaps up to", 0, 20);
   p.progress = call.progress;
@@ -111,22 +111,22 @@ void log_relief(FilterCall& call, const ReliefEdgeResult& r, const ReliefEdgePar
   call.log(QString("Direction window %1 deg; hysteresis: strong = error <= %2 and tilt >= %3 deg, weak = error <= "
                    "%4 and tilt >= %5 deg (automatic: %9 deg from the crossings, %10 deg from the noise); base scale "
                    "%6 (solved by %7), edge smoothing %8.")
-               .arg(r.window / kDeg, 0, 'f', 1)
+               .arg(r.window / kRadiansPerDegree, 0, 'f', 1)
                .arg(p.strong_error, 0, 'g', 3)
-               .arg(r.strong_angle / kDeg, 0, 'f', 1)
+               .arg(r.strong_angle / kRadiansPerDegree, 0, 'f', 1)
                .arg(p.weak_error, 0, 'g', 3)
-               .arg(r.weak_angle / kDeg, 0, 'f', 1)
+               .arg(r.weak_angle / kRadiansPerDegree, 0, 'f', 1)
                .arg(r.base_scale, 0, 'g', 4)
                .arg(QString::fromStdString(r.base.solve.summary()))
                .arg(r.edge_smoothing, 0, 'g', 4)
-               .arg(r.automatic_angle / kDeg, 0, 'f', 1)
-               .arg(r.noise_angle / kDeg, 0, 'f', 1));
+               .arg(r.automatic_angle / kRadiansPerDegree, 0, 'f', 1)
+               .arg(r.noise_angle / kRadiansPerDegree, 0, 'f', 1));
   if (r.edges.segments.empty())
     call.log(QString("No relief edge passed the thresholds: the layer is empty (meshlabserver then reports \"Failed "
                      "saving\" for it). The steepest edge crossing seen tilts by %1 deg (strong threshold %2 deg): set "
                      "\"Steepness, strong edges\" below it, or raise \"Model error, strong edges\".")
-                 .arg(r.steepest_crossing / kDeg, 0, 'f', 1)
-                 .arg(r.strong_angle / kDeg, 0, 'f', 1));
+                 .arg(r.steepest_crossing / kRadiansPerDegree, 0, 'f', 1)
+                 .arg(r.strong_angle / kRadiansPerDegree, 0, 'f', 1));
   if (!r.base.solve.converged) log_unconverged(call, r.base, r.base_scale, r.scale.edge);
 }
 
@@ -139,7 +139,7 @@ void apply_relief(FilterCall& call) {
   View view = view_of(call.mesh(), call.log);
   ReliefEdgeResult r = compute_relief_edges(surface_of(view), p);
   Polylines edges = r.edges;
-  for (auto& s : edges.strength) s /= kDeg;  // layer quality in degrees
+  for (auto& s : edges.strength) s /= kRadiansPerDegree;  // layer quality in degrees
   const QString label = derived_label(call.mesh(), "relief edges");
   add_curve_layer(call.doc, label, edges, vcg::Color4b(0, 0, 0, 255), &r.curvature->normal, lift * r.scale.edge);
   if (per_vertex) {
@@ -187,7 +187,7 @@ void apply_base(FilterCall& call) {
   if (quality) {
     call.mesh().updateDataMask(MeshModel::MM_VERTQUALITY);
     for_each_vertex(view, [&](int i, CVertexO* v) {
-      v->Q() = float(std::acos(std::clamp(n[i].dot(b.normal[i]), -1.0, 1.0)) / kDeg);
+      v->Q() = float(std::acos(std::clamp(n[i].dot(b.normal[i]), -1.0, 1.0)) / kRadiansPerDegree);
     });
   }
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

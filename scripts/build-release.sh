@@ -18,5 +18,6 @@ chroot "$root" env HOME=/root CCACHE_DIR=/root/.cache/ccache ${CCACHE_DISABLE:+C
   set -e
   cd $tree_in_root
   cmake -S . -B build-$release -G Ninja -DCMAKE_BUILD_TYPE=Release -DRELIEFKIT_MESHLAB_API=$release \
-    -DMESHLAB_SOURCE_DIR=/opt/meshlab-src -DRELIEFKIT_BENCHMARKS=OFF -DRELIEFKIT_TESTS=OFF > /dev/null
+    -DMESHLAB_SOURCE_DIR=/opt/meshlab-src -DRELIEFKIT_BENCHMARKS=OFF -DRELIEFKIT_TESTS=OFF \
+    -DCMAKE_UNITY_BUILD=${RELIEFKIT_UNITY:-OFF} > /dev/null
   cmake --build build-$release -j\$(nproc) $*"

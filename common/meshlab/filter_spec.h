@@ -5,6 +5,7 @@
 #pragma once
 
 #include <QString>
+#include <chrono>
 #include <functional>
 #include <vector>
 
@@ -22,6 +23,11 @@ struct FilterCall {
   vcg::CallBackPos* progress;
   std::function<void(const QString&)> log;
 };
+
+/// The seconds since t0, for a filter's log line.
+inline double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
 
 struct FilterSpec {
   int id;

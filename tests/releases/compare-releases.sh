@@ -18,20 +18,36 @@ cp "$here/examples/data/jar_half_section.png" "$work/inputs/profile/jar.png"
 "$here/build/tests/rk_make_mesh" turned cylinder 1.0 0 1 "$work/inputs/seal/seal.ply" >/dev/null  # a cylinder seal with five figures
 source "$here/scripts/chroot-mounts.sh"
 
-t0=$SECONDS
-bash "$here/tests/releases/run-filters.sh" "$here/build/prefix/bin/reliefkit-batch" "$work/inputs" "$work/out-2020"
-echo "MeshLab 2020.09: $((SECONDS - t0)) s"
-status=0
+# The three releases run their filters side by side (each a small input at a time: one release alone
+# leaves a core idle), each into its own log, printed in order once all are done.
+run_release() {  # RELEASE: its filters over the inputs, into out-RELEASE
+  local t0=$SECONDS
+  if [ "$1" = 2020 ]; then
+    bash "$here/tests/releases/run-filters.sh" "$here/build/prefix/bin/reliefkit-batch" "$work/inputs" "$work/out-2020"
+  else
+    chroot "${root_of[$1]}" env HOME=/root bash "$tree_in_root/tests/releases/run-filters.sh" \
+      "$tree_in_root/build-$1/prefix/bin/reliefkit-batch" "$tree_in_root/build/releases/inputs" \
+      "$tree_in_root/build/releases/out-$1"
+  fi
+  echo "MeshLab $1: $((SECONDS - t0)) s"
+}
+declare -A root_of pid_of
 for release in "${releases[@]}"; do
-  root="$(bash "$here/scripts/meshlab-root.sh" "$release")"
-  with_root_mounts "$root" "$here"
+  root_of[$release]="$(bash "$here/scripts/meshlab-root.sh" "$release")"
+  with_root_mounts "${root_of[$release]}" "$here"
+done
+for release in 2020 "${releases[@]}"; do
+  run_release "$release" >"$work/run-$release.log" 2>&1 &
+  pid_of[$release]=$!
+done
+status=0
+for release in 2020 "${releases[@]}"; do
+  wait "${pid_of[$release]}" || { echo "FAIL: MeshLab $release's filter runs failed"; status=1; }
+  cat "$work/run-$release.log"
+done
+for release in "${releases[@]}"; do
   batch="$tree_in_root/build-$release/prefix/bin/reliefkit-batch"
-  t0=$SECONDS
-  chroot "$root" env HOME=/root bash "$tree_in_root/tests/releases/run-filters.sh" \
-    "$batch" "$tree_in_root/build/releases/inputs" "$tree_in_root/build/releases/out-$release"
-  echo "MeshLab $release: $((SECONDS - t0)) s"
-  # reliefkit-batch of this release resumes too: run again over the same output, nothing is left to do.
-  again="$(chroot "$root" env HOME=/root "$batch" --filter "Demarcating Curves" --extensions ply \
+  again="$(chroot "${root_of[$release]}" env HOME=/root "$batch" --filter "Demarcating Curves" --extensions ply \
     "$tree_in_root/build/releases/inputs/mesh" "$tree_in_root/build/releases/out-$release/demarcating_curves" 2>&1)"
   echo "$again" | grep -q "1, 1 done before, 0 to do" ||
     { echo "FAIL: MeshLab $release's reliefkit-batch did not resume:"; echo "$again"; status=1; }

@@ -63,7 +63,7 @@ double median_stroke_width(const cv::Mat& ink) {
   return std::max(1.0, 2.0 * ridge[ridge.size() / 2]);
 }
 
-double percentile(std::vector<double> v, double q) {
+double error_percentile(std::vector<double> v, double q) {
   if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
   const size_t k = std::min(v.size() - 1, size_t(q * double(v.size())));
   std::nth_element(v.begin(), v.begin() + long(k), v.end());
@@ -304,8 +304,8 @@ VesselScore score_vessel(const cv::Mat& drawing, const reliefkit::TriMesh& vesse
     errors.push_back(std::abs(radius - drawn) / drawn);
   }
   s.coverage = s.rows ? double(covered) / double(s.rows) : 0;
-  s.median_error = percentile(errors, 0.5);
-  s.p90_error = percentile(errors, 0.9);
+  s.median_error = error_percentile(errors, 0.5);
+  s.p90_error = error_percentile(errors, 0.9);
   std::ostringstream cause;
   if (s.rows == 0) cause << "no row where both sides are drawn; ";
   else if (s.coverage < 0.9) cause << "covers " << pct(s.coverage) << " of the drawn profile; ";

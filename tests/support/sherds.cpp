@@ -15,10 +15,10 @@ using reliefkit::Vec3;
 
 namespace {
 
-constexpr double kWall = 5;  // mm
+constexpr double kSherdWall = 5;  // mm
 // Breaks: their points off the smooth break by this much (mm, each coordinate; a sherd's break is
 // jagged at the scale of its grains and flakes, about a tenth of the wall's thickness).
-constexpr double kBreakRoughness = 0.12 * kWall;
+constexpr double kBreakRoughness = 0.12 * kSherdWall;
 
 // The outer wall's section (radius, height), mm: from the base's middle on the axis (leaving it
 // square, as a flat base does) to the rim.
@@ -95,7 +95,7 @@ Sherd make_sherd(const SherdOptions& o) {
   std::normal_distribution<double> gauss(0, 1);
   std::uniform_real_distribution<double> uniform(0, 1);
   Sherd sh;
-  sh.thickness = kWall;
+  sh.thickness = kSherdWall;
   const std::vector<Vec2> full = spline(control_points(o.shape), o.edge);
   for (const Vec2& p : full) sh.largest_radius = std::max(sh.largest_radius, p.x());
   // The kept part of the profile, by length; a base kept starts half an edge off the axis (the
@@ -107,29 +107,29 @@ Sherd make_sherd(const SherdOptions& o) {
   if (sh.has_base) outer.front() = Vec2(0.5 * o.edge, 0);
   const std::vector<Vec2> normal = normals_of(outer);
   std::vector<Vec2> inner(outer.size());
-  for (size_t k = 0; k < outer.size(); ++k) inner[k] = outer[k] - kWall * normal[k];
+  for (size_t k = 0; k < outer.size(); ++k) inner[k] = outer[k] - kSherdWall * normal[k];
   sh.outer = outer, sh.inner = inner;
-  if (sh.has_base) sh.outer.insert(sh.outer.begin(), Vec2(0, 0)), sh.inner.insert(sh.inner.begin(), Vec2(0, kWall));
+  if (sh.has_base) sh.outer.insert(sh.outer.begin(), Vec2(0, 0)), sh.inner.insert(sh.inner.begin(), Vec2(0, kSherdWall));
   sh.rim_diameter = 0;  // set with the rim's points below: where its highest point is (a rim chart's circle)
   // The section as one loop: outer wall up, the top (a rounded rim or a break), inner wall down,
   // the bottom (a break; with the base, the axis closes it).
   std::vector<Vec2> loop(outer);
   std::vector<char> rough(outer.size(), 0);
-  const Vec2 tangent(-normal.back().y(), normal.back().x()), top_middle = outer.back() - 0.5 * kWall * normal.back();
-  const int cap = std::max(3, int(M_PI * kWall / 2 / o.edge));
+  const Vec2 tangent(-normal.back().y(), normal.back().x()), top_middle = outer.back() - 0.5 * kSherdWall * normal.back();
+  const int cap = std::max(3, int(M_PI * kSherdWall / 2 / o.edge));
   for (int j = 1; j < cap; ++j) {
     const double phi = M_PI * j / cap;
-    loop.push_back(sh.has_rim ? Vec2(top_middle + 0.5 * kWall * (std::cos(phi) * normal.back() + std::sin(phi) * tangent))
-                              : Vec2(outer.back() - kWall * (double(j) / cap) * normal.back()));
+    loop.push_back(sh.has_rim ? Vec2(top_middle + 0.5 * kSherdWall * (std::cos(phi) * normal.back() + std::sin(phi) * tangent))
+                              : Vec2(outer.back() - kSherdWall * (double(j) / cap) * normal.back()));
     rough.push_back(!sh.has_rim);
   }
   if (sh.has_rim) {  // the cap's crest: where its circle's radius points straight up
     const double crest = std::clamp(std::atan2(tangent.y(), normal.back().y()), 0.0, M_PI);
-    sh.rim_diameter = 2 * (top_middle + 0.5 * kWall * (std::cos(crest) * normal.back() + std::sin(crest) * tangent)).x();
+    sh.rim_diameter = 2 * (top_middle + 0.5 * kSherdWall * (std::cos(crest) * normal.back() + std::sin(crest) * tangent)).x();
   }
   for (size_t k = inner.size(); k-- > 0;) loop.push_back(inner[k]), rough.push_back(0);
   if (!sh.has_base)
-    for (int j = 1; j < cap; ++j) loop.push_back(inner.front() + kWall * (double(j) / cap) * normal.front()), rough.push_back(1);
+    for (int j = 1; j < cap; ++j) loop.push_back(inner.front() + kSherdWall * (double(j) / cap) * normal.front()), rough.push_back(1);
   const double span = o.span_deg * M_PI / 180, theta0 = uniform(rng) * 2 * M_PI;
   const bool whole = o.span_deg >= 360;
   const int columns = std::max(3, int(span * sh.largest_radius / o.edge));
@@ -169,7 +169,7 @@ Sherd make_sherd(const SherdOptions& o) {
     }
   }
   if (sh.has_base) {  // fans to the axis: under the base and on its floor
-    const int pole_out = b.add(Vec3(0, 0, 0)), pole_in = b.add(Vec3(0, 0, kWall));
+    const int pole_out = b.add(Vec3(0, 0, 0)), pole_in = b.add(Vec3(0, 0, kSherdWall));
     for (int i = 0; i < columns; ++i) {
       const auto &c0 = grid[size_t(i)], &c1 = grid[size_t((i + 1) % n_columns)];
       b.face(pole_out, c1[0], c0[0]);

@@ -50,7 +50,7 @@ double half_arc(const TurnedOptions& o) {
 }
 
 // Distance from p to the segment ab.
-double to_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
+double distance_to_segment_2d(const Vec2& p, const Vec2& a, const Vec2& b) {
   const Vec2 ab = b - a;
   const double u = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
   return (p - a - u * ab).norm();
@@ -67,17 +67,17 @@ double frieze(double along, double t, double h, double circumference, double w) 
   for (int k = 0; k < 4; ++k) {
     const double c = (k + 0.5) * circumference / 4;
     const Vec2 p(std::remainder(along - c, circumference), t);  // near this figure, the seam's wrap taken off
-    const double body = to_segment(p, Vec2(0, -0.55 * h), Vec2(0, 0.25 * h));
-    const double legs = std::min(to_segment(p, Vec2(0, -0.15 * h), Vec2(-0.12 * h, -0.6 * h)),
-                                 to_segment(p, Vec2(0, -0.15 * h), Vec2(0.12 * h, -0.6 * h)));
-    const double arm = to_segment(p, Vec2(0, 0.12 * h), Vec2(0.28 * h, 0.42 * h));  // raised forwards (+along)
+    const double body = distance_to_segment_2d(p, Vec2(0, -0.55 * h), Vec2(0, 0.25 * h));
+    const double legs = std::min(distance_to_segment_2d(p, Vec2(0, -0.15 * h), Vec2(-0.12 * h, -0.6 * h)),
+                                 distance_to_segment_2d(p, Vec2(0, -0.15 * h), Vec2(0.12 * h, -0.6 * h)));
+    const double arm = distance_to_segment_2d(p, Vec2(0, 0.12 * h), Vec2(0.28 * h, 0.42 * h));  // raised forwards (+along)
     const double head = std::abs((p - Vec2(0, 0.42 * h)).norm() - 0.1 * h);         // a ring
     share = std::max({share, stroke(body), stroke(legs), stroke(arm), stroke(head)});
     const Vec2 star = Vec2(std::remainder(along - c - circumference / 8, circumference), t - 0.35 * h);
     for (int ray = 0; ray < 3; ++ray) {
       const double a = ray * M_PI / 3;
       const Vec2 d(0.1 * h * std::cos(a), 0.1 * h * std::sin(a));
-      share = std::max(share, stroke(to_segment(star, -d, d)));
+      share = std::max(share, stroke(distance_to_segment_2d(star, -d, d)));
     }
   }
   return share;

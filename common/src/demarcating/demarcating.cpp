@@ -1,3 +1,4 @@
+#include "reliefkit/base/angles.h"
 #include "reliefkit/demarcating/demarcating.h"
 #include "reliefkit/base/curve_selection.h"
 
@@ -12,7 +13,6 @@
 namespace reliefkit {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 

@@ -7,13 +7,13 @@
 #include <unordered_map>
 
 #include "plate_raster.h"
+#include "reliefkit/base/angles.h"
 #include "reliefkit/base/scale.h"
 #include "reliefkit/illustration/plate.h"
 
 namespace reliefkit {
 namespace {
 
-constexpr double kDeg = M_PI / 180;
 
 // The view's page axes: right, up, and towards the viewer.
 struct ViewAxes {
@@ -42,7 +42,7 @@ constexpr double kFlatGrey = 0.65;
 // Raking: the light received, scaled so that a face square to the view is kFlatGrey.
 std::vector<double> raking(const std::vector<Vec3>& normals, const PlateView& view, const PlateShadingParams& p) {
   std::vector<double> g = lit(normals, light_direction(view, p.azimuth_deg, p.elevation_deg));
-  for (double& x : g) x = std::min(1.0, kFlatGrey * x / std::sin(p.elevation_deg * kDeg));
+  for (double& x : g) x = std::min(1.0, kFlatGrey * x / std::sin(p.elevation_deg * kRadiansPerDegree));
   return g;
 }
 
@@ -55,7 +55,7 @@ std::vector<double> raking(const std::vector<Vec3>& normals, const PlateView& vi
 constexpr double kMultiElevationDeg = 45;
 std::vector<double> multi_directional(const std::vector<Vec3>& normals, const PlateView& view, const PlateShadingParams& p) {
   std::vector<double> g(normals.size(), 0);
-  const double flat = std::sin(kMultiElevationDeg * kDeg);  // what a face square to the view receives from each
+  const double flat = std::sin(kMultiElevationDeg * kRadiansPerDegree);  // what a face square to the view receives from each
   for (int k = 0; k < p.directions; ++k) {
     const std::vector<double> one = lit(normals, light_direction(view, p.azimuth_deg + 360.0 * k / p.directions, kMultiElevationDeg));
     for (size_t i = 0; i < g.size(); ++i) g[i] += one[i] / (p.directions * flat);
@@ -157,7 +157,7 @@ void PlateShadingParams::validate() const {
 
 Vec3 light_direction(const PlateView& view, double azimuth_deg, double elevation_deg) {
   const ViewAxes a = view_axes(view);
-  const double az = azimuth_deg * kDeg, el = elevation_deg * kDeg;
+  const double az = azimuth_deg * kRadiansPerDegree, el = elevation_deg * kRadiansPerDegree;
   return (std::cos(el) * (std::sin(az) * a.right + std::cos(az) * a.up) + std::sin(el) * a.towards).normalized();
 }
 

@@ -1,3 +1,4 @@
+#include "reliefkit/base/angles.h"
 #include "reliefkit/multiscale/scale_selection.h"
 
 #include <algorithm>
@@ -6,7 +7,6 @@
 namespace reliefkit {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 }
 
 double ridge_optimal_scale(double t0, double gamma) { return 2 * gamma * t0 / (3 - 2 * gamma); }

@@ -7,6 +7,7 @@
 // says so. Tried and left out, with their figures in docs/pottery.md:
 // smoothing 1/2/3/5 edge lengths (3 kept), a bilateral normal filter, the profile on the raw
 // positions, the rim's plane as a rim chart holds it, least trimmed squares for the profile.
+#include "reliefkit/base/angles.h"
 #include "reliefkit/pottery/vessel_axis.h"
 
 #include <Eigen/Dense>
@@ -27,7 +28,6 @@ namespace {
 
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
-constexpr double kDeg = 180.0 / M_PI;
 constexpr size_t kFitFaces = 150000;
 
 // A face as a sample of the surface: its centroid in the piece's own frame (centred on the
@@ -230,7 +230,7 @@ std::vector<ComplexFit> candidate_starts(const std::vector<FaceSample>& samples,
   auto agreement = [&](const ComplexFit& c) {
     double area = 0;
     for (int f : probe)
-      if (std::abs(off_axis_angle(samples[f], c.direction, c.point)) < 2 / kDeg) area += samples[f].area;
+      if (std::abs(off_axis_angle(samples[f], c.direction, c.point)) < 2 / kDegreesPerRadian) area += samples[f].area;
     return area;
   };
   std::mt19937 rng(42);
@@ -251,7 +251,7 @@ std::vector<ComplexFit> candidate_starts(const std::vector<FaceSample>& samples,
   for (const auto& [area, c] : scored) {
     bool distinct = true;
     for (const ComplexFit& s : starts)
-      distinct = distinct && (std::abs(s.direction.dot(c.direction)) < std::cos(10 / kDeg) ||
+      distinct = distinct && (std::abs(s.direction.dot(c.direction)) < std::cos(10 / kDegreesPerRadian) ||
                               (s.point - c.point).norm() > 0.2);
     if (distinct) starts.push_back(c);
     if (starts.size() == 4) break;
@@ -362,8 +362,8 @@ Reweighting reweight(const std::vector<FaceSample>& samples, const ComplexFit& a
   }
   const double robust_sigma = 1.4826 * weighted_median(kept);
   r.spread = robust_sigma;
-  r.cutoff = params.outlier_angle_deg > 0 ? params.outlier_angle_deg / kDeg
-                                          : std::max(4.685 * robust_sigma, 2.0 / kDeg);
+  r.cutoff = params.outlier_angle_deg > 0 ? params.outlier_angle_deg / kDegreesPerRadian
+                                          : std::max(4.685 * robust_sigma, 2.0 / kDegreesPerRadian);
   for (size_t f = 0; f < samples.size(); ++f) weight[f] = samples[f].area * tukey(angle[f] / r.cutoff);
   return r;
 }
@@ -377,7 +377,7 @@ ComplexFit thinnest_profile_axis(const std::vector<WallPoint>& probe, const Comp
     const ComplexFit c = moved_axis(start, x);
     return profile_thickness(probe, c.direction, c.point);
   };
-  const double steps[4] = {1 / kDeg, 1 / kDeg, 0.1 * cell, 0.1 * cell};
+  const double steps[4] = {1 / kDegreesPerRadian, 1 / kDegreesPerRadian, 0.1 * cell, 0.1 * cell};
   ComplexFit c = moved_axis(start, nelder_mead(cost, steps, 1e-4 * cell));
   c.point -= c.point.dot(c.direction) * c.direction;
   return c;
@@ -606,13 +606,13 @@ const Tried& choose_axis(const std::vector<Tried>& tried) {
     if (t.r.spread <= 1.5 * tightest && (!chosen || t.thickness < chosen->thickness)) chosen = &t;
   for (const Tried& t : tried) {
     const double cosine = std::abs(t.r.fit.direction.dot(chosen->r.fit.direction));
-    if (t.r.spread <= 1.5 * tightest && cosine < std::cos(10 / kDeg) && t.thickness < 2 * chosen->thickness) {
+    if (t.r.spread <= 1.5 * tightest && cosine < std::cos(10 / kDegreesPerRadian) && t.thickness < 2 * chosen->thickness) {
       char what[300];
       std::snprintf(what, sizeof what,
                     "two axes fit this piece about equally well (%.0f degrees apart; the profile about the second is "
                     "only %.1f times as thick): it is too small or too evenly curved to tell; give the axis, or scan "
                     "a piece with rim or base",
-                    std::acos(std::min(1.0, cosine)) * kDeg, t.thickness / chosen->thickness);
+                    std::acos(std::min(1.0, cosine)) * kDegreesPerRadian, t.thickness / chosen->thickness);
       throw InputError(what);
     }
   }
@@ -637,8 +637,8 @@ void weigh_every_face(const std::vector<FaceSample>& all, const Reweighting& las
     weight_sum += a * fit.face_weight[f];
   }
   fit.wall_share = kept / total;
-  fit.rms_angle_deg = weight_sum > 0 ? std::sqrt(angle_sum / weight_sum) * kDeg : 90;
-  fit.cutoff_deg = last.cutoff * kDeg;
+  fit.rms_angle_deg = weight_sum > 0 ? std::sqrt(angle_sum / weight_sum) * kDegreesPerRadian : 90;
+  fit.cutoff_deg = last.cutoff * kDegreesPerRadian;
 }
 
 }  // namespace
@@ -666,7 +666,7 @@ std::vector<double> off_axis_angles(const TriMesh& mesh, const std::vector<Vec3>
     FaceSample s;
     s.q = (mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3;
     s.n = face_normal[f];
-    angle[f] = std::abs(off_axis_angle(s, axis.direction, axis.point)) * kDeg;
+    angle[f] = std::abs(off_axis_angle(s, axis.direction, axis.point)) * kDegreesPerRadian;
   }
   return angle;
 }
@@ -695,7 +695,7 @@ VesselAxisFit fit_vessel_axis(const Surface& surface, const VesselAxisParams& pa
   check_determined(fit);
   const Jackknife j = jackknife(samples, chosen.w, axis);
   const Jackknife p = profile_jackknife(outer_wall_points(samples, chosen.w, axis.direction, axis.point), axis, cell);
-  fit.angle_uncertainty_deg = std::max(j.angle, p.angle) * kDeg;
+  fit.angle_uncertainty_deg = std::max(j.angle, p.angle) * kDegreesPerRadian;
   fit.offset_uncertainty = std::max(j.offset, p.offset) * frame.scale;
   fit.axis.direction = axis.direction;
   fit.axis.point = frame.centre + frame.scale * (axis.point - axis.point.dot(axis.direction) * axis.direction);

@@ -1,4 +1,5 @@
 // ReliefKit — the pottery record of a scanned vessel or sherd. See reliefkit/pottery/vessel_record.h.
+#include "reliefkit/base/angles.h"
 #include "reliefkit/pottery/vessel_record.h"
 
 #include <Eigen/Geometry>
@@ -13,7 +14,6 @@
 namespace reliefkit {
 namespace {
 
-constexpr double kDeg = 180.0 / M_PI;
 
 std::string format(const char* pattern, double a, double b = 0, double c = 0, double d = 0) {
   char text[400];
@@ -77,9 +77,9 @@ EndRoughness end_roughness(const TriMesh& mesh, const std::vector<Vec3>& p, cons
   }
   EndRoughness r;
   r.end = std::move(end);
-  r.wall = percentile(side, 0.5) * kDeg;
-  if (top.size() >= 8) r.top = percentile(top, 0.5) * kDeg;
-  if (bottom.size() >= 8) r.bottom = percentile(bottom, 0.5) * kDeg;
+  r.wall = percentile(side, 0.5) * kDegreesPerRadian;
+  if (top.size() >= 8) r.top = percentile(top, 0.5) * kDegreesPerRadian;
+  if (bottom.size() >= 8) r.bottom = percentile(bottom, 0.5) * kDegreesPerRadian;
   return r;
 }
 
@@ -121,12 +121,12 @@ bool decide_up(const TriMesh& mesh, const std::vector<Vec3>& p, const EndRoughne
   }
   // Nothing on the piece decides: its up on screen (MeshLab shows +y up), when the axis runs
   // within 30 degrees of it (a vessel made from a drawing, a scan saved upright).
-  if (std::abs(input_y.z()) > std::cos(30 / kDeg)) {
+  if (std::abs(input_y.z()) > std::cos(30 / kDegreesPerRadian)) {
     record.up_rule = UpRule::input_up;
     record.up_reason = format("the scan's own up (its y axis, %.0f degrees from the axis; no base, and the ends' faces turn %.1f "
                               "and %.1f degrees from the smoothed surface: both rims or both breaks): check it, and flip if the "
                               "rim is down",
-                              std::acos(std::min(1.0, std::abs(input_y.z()))) * kDeg, ends.top, ends.bottom);
+                              std::acos(std::min(1.0, std::abs(input_y.z()))) * kDegreesPerRadian, ends.top, ends.bottom);
     return input_y.z() < 0;
   }
   double r_top = 0, r_bottom = 0;
@@ -437,7 +437,7 @@ void measure_rim(VesselRecord& record, const std::vector<Vec3>& p, double edge) 
   std::vector<char> degree(360, 0);
   for (const Vec3& q : p)
     if (q.z() >= top - band && q.head<2>().norm() > 0.5 * radius)
-      degree[size_t((int(std::floor(std::atan2(q.y(), q.x()) * kDeg)) + 720) % 360)] = 1;
+      degree[size_t((int(std::floor(std::atan2(q.y(), q.x()) * kDegreesPerRadian)) + 720) % 360)] = 1;
   int covered = 0;
   for (int k = 0; k < 360; ++k) {
     const bool gap_closed = !degree[size_t(k)] && ((degree[size_t((k + 359) % 360)] || degree[size_t((k + 358) % 360)]) &&
@@ -615,7 +615,7 @@ VesselRecord record_vessel(const Surface& surface, const VesselRecordParams& par
     const double lever = record.has_rim ? record.rim_height - centre.z() : 0;
     // The crest itself is read to about an eighth of an edge (a parabola through many vertices).
     record.diameter_uncertainty =
-        record.has_rim ? 2 * std::hypot(std::hypot(record.fit->offset_uncertainty, lever * std::tan(record.angle_uncertainty_deg / kDeg)),
+        record.has_rim ? 2 * std::hypot(std::hypot(record.fit->offset_uncertainty, lever * std::tan(record.angle_uncertainty_deg / kDegreesPerRadian)),
                                         edge / 8)
                        : 0;
   }

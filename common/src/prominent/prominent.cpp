@@ -1,3 +1,4 @@
+#include "reliefkit/base/angles.h"
 #include "reliefkit/prominent/prominent.h"
 
 #include <algorithm>
@@ -12,7 +13,6 @@
 
 namespace reliefkit {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

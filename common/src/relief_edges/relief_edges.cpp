@@ -1,3 +1,4 @@
+#include "reliefkit/base/angles.h"
 #include "reliefkit/relief_edges/relief_edges.h"
 #include "reliefkit/base/curve_selection.h"
 
@@ -12,7 +13,6 @@
 
 namespace reliefkit {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kA = 5 * kPi / 8, kB = kPi / 8;  // eq. 4.19
 const double kCosMaxTurn = std::cos(kPi / 4);
 

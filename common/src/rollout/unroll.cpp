@@ -1,4 +1,5 @@
 // ReliefKit — rollouts around an axis. See reliefkit/rollout/unroll.h.
+#include "reliefkit/base/angles.h"
 #include "reliefkit/rollout/unroll.h"
 
 #include <algorithm>
@@ -14,8 +15,6 @@
 namespace reliefkit {
 namespace {
 
-constexpr double kPi = M_PI;
-constexpr double kDeg = 180.0 / M_PI;
 
 bool report(Progress progress, int percent, const char* what) { return progress ? progress(percent, what) : true; }
 
@@ -590,7 +589,7 @@ Rollout unroll(const Surface& surface, const UnrollParams& params) {
   refuse_if_not_turned(out, local, params.axis_source);
   std::vector<RolloutMap::Local> wall_local(size_t(out.wall_vertices));
   for (size_t i = 0; i < wall_local.size(); ++i) wall_local[i] = local[size_t(out.source[i])];
-  const double seam = params.seam_deg ? wrapped(*params.seam_deg / kDeg) : automatic_seam(wall_local, out);
+  const double seam = params.seam_deg ? wrapped(*params.seam_deg / kDegreesPerRadian) : automatic_seam(wall_local, out);
   report(params.progress, 60, "Unrolling");
   out.map.emplace(axis, reference, std::move(base), seam, params.impression, params.development);
   const RolloutMap& map = *out.map;
@@ -697,12 +696,12 @@ std::vector<std::string> rollout_log_lines(const Rollout& r) {
   lines.push_back(text);
   if (r.seam_in_gap)
     std::snprintf(text, sizeof text, "Seam: at %.1f degrees, in the middle of the widest sector the piece does not cover (chosen).",
-                  m.seam_angle() * kDeg);
+                  m.seam_angle() * kDegreesPerRadian);
   else if (r.seam_automatic)
     std::snprintf(text, sizeof text, "Seam: at %.1f degrees, where the surface rises least off the base (rms %.3g; chosen); %ld vertices copied to cut the faces across it.",
-                  m.seam_angle() * kDeg, r.seam_relief, r.seam_copies);
+                  m.seam_angle() * kDegreesPerRadian, r.seam_relief, r.seam_copies);
   else
-    std::snprintf(text, sizeof text, "Seam: at %.1f degrees (given); %ld vertices copied to cut the faces across it.", m.seam_angle() * kDeg,
+    std::snprintf(text, sizeof text, "Seam: at %.1f degrees (given); %ld vertices copied to cut the faces across it.", m.seam_angle() * kDegreesPerRadian,
                   r.seam_copies);
   lines.push_back(text);
   const bool conformal = m.development() == Development::conformal;

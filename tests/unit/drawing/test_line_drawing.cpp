@@ -9,13 +9,13 @@
 #include <cstdio>
 #include <fstream>
 
+#include "reliefkit/base/angles.h"
 #include "reliefkit/drawing/line_drawing.h"
 
 using namespace reliefkit;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // A circle of radius 100 px at (200, 200) and a line from (50, 350) to (350, 330), 2 px black.
 cv::Mat circle_and_line() {

@@ -16,6 +16,7 @@
 #include <limits>
 #include <map>
 
+#include "reliefkit/base/angles.h"
 #include "reliefkit/base/work_counts.h"
 #include "reliefkit/prominent/prominent.h"
 #include "reliefs.h"
@@ -25,12 +26,11 @@ using namespace reliefkit;
 
 namespace {
 
-constexpr double kDeg = 180 / 3.14159265358979323846;
 
 // Angle between two lines (directions without sign), degrees.
 double line_angle(const Vec3& a, const Vec3& b) {
   const double c = std::abs(a.normalized().dot(b.normalized()));
-  return std::acos(std::min(1.0, c)) * kDeg;
+  return std::acos(std::min(1.0, c)) * kDegreesPerRadian;
 }
 
 // A ridge along the circle of radius 0.5: height `height` x exp(-(r - 0.5)^2 / 2 width^2) on the
@@ -129,7 +129,7 @@ TEST(ProminentField, BetweenRidgeAndEdgeTheDirectionBlendsAsEq62Says) {
     // Where the two weights differ and the two directions do (elsewhere a swap would not show).
     if (!(alpha > 0 && alpha < 1 && std::abs(alpha - 0.5) > 0.1 && line_angle(g, t) > 20)) continue;
     const Vec3 want = (alpha * g + (1 - alpha) * t).normalized();
-    const double err = std::acos(std::clamp(want.dot(r.prominent[v]), -1.0, 1.0)) * kDeg;
+    const double err = std::acos(std::clamp(want.dot(r.prominent[v]), -1.0, 1.0)) * kDegreesPerRadian;
     worst_angle = std::max(worst_angle, err), sum += err, ++n;
   }
   std::printf("[prominent direction, 0 < alpha < 1] %d vertices with alpha in (0, 0.4) or (0.6, 1) and g, t over 20 deg "
@@ -362,7 +362,7 @@ TEST(ProminentEnhancement, RestoresAnErodedStepBetterThanBilateralAndTaubin) {
   }
   std::printf("60 flow iterations at strength 100: largest excursion beyond the local height extremum (z): %.4f edge "
               "lengths (base normals lean by up to %.2f deg: %.4f allowed); beyond each vertex's own allowance "
-              "rho sin(lean): %.4f\n", worst / e, lean * kDeg, allowed / e, worst_excess / e);
+              "rho sin(lean): %.4f\n", worst / e, lean * kDegreesPerRadian, allowed / e, worst_excess / e);
   EXPECT_LE(worst, allowed);
   EXPECT_LE(worst_excess, 0.0);
 }

@@ -83,14 +83,15 @@ TEST(BaseNormals, SphereAndCylinderBasesUnderRelief) {
 }
 
 namespace {
-struct Case {
+struct CurvedCase {
   const char* name;
   rktest::Relief (*make)(const rktest::ReliefShape&);
 };
-rktest::Relief sph(const rktest::ReliefShape& s) { return rktest::disc_on_sphere(s); }
-rktest::Relief cyl(const rktest::ReliefShape& s) { return rktest::discs_on_cylinder(s); }
-rktest::Relief sq(const rktest::ReliefShape& s) { return rktest::squares_on_cylinder(s); }
-const Case kCurved[] = {{"disc on sphere", sph}, {"discs on cylinder", cyl}, {"squares on cylinder", sq}};
+rktest::Relief sphere_disc(const rktest::ReliefShape& s) { return rktest::disc_on_sphere(s); }
+rktest::Relief cylinder_discs(const rktest::ReliefShape& s) { return rktest::discs_on_cylinder(s); }
+rktest::Relief cylinder_squares(const rktest::ReliefShape& s) { return rktest::squares_on_cylinder(s); }
+const CurvedCase kCurved[] = {
+    {"disc on sphere", sphere_disc}, {"discs on cylinder", cylinder_discs}, {"squares on cylinder", cylinder_squares}};
 }  // namespace
 
 TEST(ReliefEdgesReliefs, NoiseFree) {
