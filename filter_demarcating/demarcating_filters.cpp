@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "reliefkit/demarcating/demarcating.h"
+#include "curve_report.h"
 #include "mesh_bridge.h"
 #include "params.h"
 
@@ -57,8 +58,7 @@ DemarcatingParams read_params(FilterCall& call) {
 
 void demarcating_parameters(const MeshModel&, RichParameterList& par) {
   common_parameters(par);
-  par.addParam(RichFloat("min_length", float(DemarcatingParams::kDefaultMinLengthEdges), "Minimum curve length",
-                         "Drops curve pieces shorter than this many edge lengths (specks of noise). 0 keeps all."));
+  add_min_length(par, DemarcatingParams::kDefaultMinLengthEdges);
   par.addParam(RichBool("per_vertex", true, "Write per-vertex results",
                         "Also store, on this mesh, the curvature across the curve direction, the strength and "
                         "the direction at every vertex (attributes demarcating_kappa, demarcating_strength, "
@@ -100,7 +100,7 @@ void log_curves(FilterCall& call, const DemarcatingParams& p, const DemarcatingR
 void apply_demarcating(FilterCall& call) {
   auto t0 = std::chrono::steady_clock::now();
   DemarcatingParams p = read_params(call);
-  p.min_length_edges = read_float(call, "min_length", "Minimum curve length", 0, 1e6);
+  p.min_length_edges = read_min_length(call);
   const bool per_vertex = read_bool(call, "per_vertex", "Write per-vertex results");
   const bool quality = read_bool(call, "quality", "Vertex quality = curvature across");
   const double lift = read_lift(call);
@@ -121,6 +121,7 @@ void apply_demarcating(FilterCall& call) {
   }
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   log_curves(call, p, r, label, view.mesh.n_faces(), secs);
+  log_curve_statistics(call, "demarcating curves", "demarcating", r.curves, r.scale.edge, view.mesh.n_faces());
 }
 
 void shading_parameters(const MeshModel&, RichParameterList& par) {

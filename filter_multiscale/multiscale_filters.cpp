@@ -4,6 +4,7 @@
 #include <cmath>
 #include <tuple>
 
+#include "curve_report.h"
 #include "mesh_bridge.h"
 #include "params.h"
 #include "reliefkit/base/angles.h"
@@ -215,8 +216,7 @@ void ridges_parameters(const MeshModel&, RichParameterList& par) {
   par.addParam(RichFloat("threshold", 1.f, "Strength threshold",
                          "Keeps lines at least this strong, relative to the automatic threshold (1). Smaller values "
                          "show fainter lines, larger only the clearest."));
-  par.addParam(RichFloat("min_length", float(kMultiscaleMinLengthEdges), "Minimum curve length",
-                         "Drops pieces shorter than this many edge lengths. 0 keeps all."));
+  add_min_length(par, kMultiscaleMinLengthEdges);
   add_scale_range(par);
   add_lift(par);
 }
@@ -225,7 +225,7 @@ void apply_ridges(FilterCall& call) {
   const auto t0 = std::chrono::steady_clock::now();
   RidgeValleyParams p;
   p.relative_threshold = read_float(call, "threshold", "Strength threshold", 0, 1000);
-  p.min_length_edges = read_float(call, "min_length", "Minimum curve length", 0, 1e6);
+  p.min_length_edges = read_min_length(call);
   const ScaleRange range = read_scale_range(call);
   const double lift = read_lift(call);
   p.progress = call.progress;
@@ -249,6 +249,8 @@ void apply_ridges(FilterCall& call) {
                .arg(lv)
                .arg(seconds_since(t0), 0, 'f', 2));
   call.log(histogram(r.scale));
+  log_curve_statistics(call, "multi-scale ridges", "ridges", r.curves.ridges, h, view.mesh.n_faces());
+  log_curve_statistics(call, "multi-scale valleys", "valleys", r.curves.valleys, h, view.mesh.n_faces());
   for (const auto& [name, layer, strongest, threshold] :
        {std::tuple{"ridge", &r.curves.ridges, r.curves.strongest_ridge, r.curves.ridge_threshold},
         std::tuple{"valley", &r.curves.valleys, r.curves.strongest_valley, r.curves.valley_threshold}})
@@ -261,8 +263,7 @@ void apply_ridges(FilterCall& call) {
 }
 
 void relief_parameters(const MeshModel&, RichParameterList& par) {
-  par.addParam(RichFloat("min_length", float(ReliefEdgeParams::kDefaultMinLengthEdges), "Minimum curve length",
-                         "Drops edge pieces shorter than this many edge lengths. 0 keeps all."));
+  add_min_length(par, ReliefEdgeParams::kDefaultMinLengthEdges);
   par.addParam(RichFloat("gap", float(ReliefEdgeParams::kDefaultLinkGapEdges), "Bridge gaps up to",
                          "Joins the ends of edge pieces that face each other across a gap of at most this many edge "
                          "lengths. 0 leaves the pieces as found."));
@@ -273,7 +274,7 @@ void relief_parameters(const MeshModel&, RichParameterList& par) {
 void apply_relief(FilterCall& call) {
   const auto t0 = std::chrono::steady_clock::now();
   ReliefEdgeParams p;
-  p.min_length_edges = read_float(call, "min_length", "Minimum curve length", 0, 1e6);
+  p.min_length_edges = read_min_length(call);
   p.link_gap_edges = read_float(call, "gap", "Bridge gaps up to", 0, 20);
   const ScaleRange range = read_scale_range(call);
   const double lift = read_lift(call);
@@ -295,6 +296,8 @@ void apply_relief(FilterCall& call) {
                .arg(r.curves.strong_angle / kRadiansPerDegree, 0, 'f', 1)
                .arg(seconds_since(t0), 0, 'f', 2));
   call.log(histogram(r.scale));
+  log_curve_statistics(call, "multi-scale relief edges", "relief_edges", r.curves.edges, r.scale.scale.edge,
+                       view.mesh.n_faces());
   if (r.curves.edges.segments.empty())
     call.log(QString("No relief edge passed the thresholds: the layer is empty (meshlabserver then reports \"Failed "
                      "saving\" for it). The steepest edge crossing seen tilts by %1 deg.")

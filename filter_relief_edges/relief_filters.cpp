@@ -6,6 +6,7 @@
 
 #include "reliefkit/base/angles.h"
 #include "reliefkit/relief_edges/base_normals.h"
+#include "curve_report.h"
 #include "mesh_bridge.h"
 #include "params.h"
 #include "reliefkit/relief_edges/relief_edges.h"
@@ -76,8 +77,7 @@ void relief_parameters(const MeshModel&, RichParameterList& par) {
                          "the log says which)."));
   par.addParam(RichFloat("weak_angle", 0.f, "Steepness, weak edges (degrees)",
                          "Edges continue from the seeds where the tilt is at least this. 0: half the strong one."));
-  par.addParam(RichFloat("min_length", float(ReliefEdgeParams::kDefaultMinLengthEdges), "Minimum curve length",
-                         "Drops edge pieces shorter than this many edge lengths. 0 keeps all."));
+  add_min_length(par, ReliefEdgeParams::kDefaultMinLengthEdges);
   par.addParam(RichFloat("gap", float(ReliefEdgeParams::kDefaultLinkGapEdges), "Bridge gaps up to",
                          "Joins the ends of edge pieces that face each other across a gap of at most this many edge "
                          "lengths, so that outlines come out continuous. 0 leaves the pieces as found."));
@@ -99,7 +99,7 @@ ReliefEdgeParams read_relief_parameters(FilterCall& call) {
   p.weak_error = std::max(read_float(call, "weak_error", "Model error, weak edges", 0, 1), p.strong_error);
   p.strong_angle = read_float(call, "strong_angle", "Steepness, strong edges (degrees)", 0, 90) * kRadiansPerDegree;
   p.weak_angle = read_float(call, "weak_angle", "Steepness, weak edges (degrees)", 0, 90) * kRadiansPerDegree;
-  p.min_length_edges = read_float(call, "min_length", "Minimum curve length", 0, 1e6);
+  p.min_length_edges = read_min_length(call);
   p.link_gap_edges = read_float(call, "gap", "Bridge gaps up to", 0, 20);
   p.progress = call.progress;
   return p;
@@ -162,6 +162,7 @@ void apply_relief(FilterCall& call) {
                .arg(secs, 0, 'f', 3)
                .arg(r.links));
   log_relief(call, r, p);
+  log_curve_statistics(call, "relief edges", "relief_edges", r.edges, r.scale.edge, view.mesh.n_faces());
 }
 
 void base_parameters(const MeshModel&, RichParameterList& par) {
@@ -205,8 +206,7 @@ void ridge_parameters(const MeshModel&, RichParameterList& par) {
                          "Keeps lines at least this curved, relative to the automatic threshold (1). Smaller values "
                          "show fainter lines, larger only the sharpest."));
   add_presmoothing(par);
-  par.addParam(RichFloat("min_length", float(RidgeValleyParams::kDefaultMinLengthEdges), "Minimum curve length",
-                         "Drops pieces shorter than this many edge lengths. 0 keeps all."));
+  add_min_length(par, RidgeValleyParams::kDefaultMinLengthEdges);
   add_lift(par);
 }
 
@@ -215,7 +215,7 @@ void apply_ridges(FilterCall& call) {
   RidgeValleyParams p;
   p.relative_threshold = read_float(call, "threshold", "Strength threshold", 0, 1000);
   p.presmoothing = read_presmoothing(call);
-  p.min_length_edges = read_float(call, "min_length", "Minimum curve length", 0, 1e6);
+  p.min_length_edges = read_min_length(call);
   const double lift = read_lift(call);
   p.progress = call.progress;
   View view = view_of(call.mesh(), call.log);
@@ -234,6 +234,8 @@ void apply_ridges(FilterCall& call) {
                .arg(lv)
                .arg(secs, 0, 'f', 3));
   call.log(scale_summary(r.scale, r.noise, r.presmoothing, p.presmoothing));
+  log_curve_statistics(call, "ridges", "ridges", r.ridges, r.scale.edge, view.mesh.n_faces());
+  log_curve_statistics(call, "valleys", "valleys", r.valleys, r.scale.edge, view.mesh.n_faces());
   for (const auto& [name, layer, strongest, threshold] :
        {std::tuple{"ridge", &r.ridges, r.strongest_ridge, r.ridge_threshold},
         std::tuple{"valley", &r.valleys, r.strongest_valley, r.valley_threshold}})

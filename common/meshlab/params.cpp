@@ -101,6 +101,14 @@ void add_base_scale(RichParameterList& par) {
 
 Length read_base_scale(FilterCall& call) { return read_length(call, "base_scale", "Base surface scale", 0.5, 10000); }
 
+void add_min_length(RichParameterList& par, double default_edges) {
+  par.addParam(RichFloat("min_length", float(default_edges), "Minimum curve length",
+                         "Drops curve pieces shorter than this many edge lengths (specks of noise; pieces under 10 "
+                         "edge lengths are the dashes the log counts). 0 keeps all."));
+}
+
+double read_min_length(FilterCall& call) { return read_float(call, "min_length", "Minimum curve length", 0, 1e6); }
+
 void add_lift(RichParameterList& par) {
   par.addParam(RichFloat("lift", 0.2f, "Lift curves off the surface",
                          "Moves the points of the curve layer this many edge lengths along the surface normal, so "

@@ -43,6 +43,9 @@ void add_base_scale(RichParameterList& par);
 Length read_base_scale(FilterCall& call);
 
 /// "lift": how far (edge lengths) curve layers are lifted off the surface for display.
+/// "Minimum curve length" (min_length), in edge lengths: the curve filters' dash removal (drop_dashes).
+void add_min_length(RichParameterList& par, double default_edges);
+double read_min_length(FilterCall& call);
 void add_lift(RichParameterList& par);
 double read_lift(FilterCall& call);
 

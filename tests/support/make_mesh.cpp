@@ -2,6 +2,7 @@
 //   rk_make_mesh torus R r nu nv jitter seed out.ply
 //   rk_make_mesh relief-torus FACES out.ply      (jittered torus with bumps, ~FACES faces)
 //   rk_make_mesh sphere r levels jitter out.ply
+//   rk_make_mesh flake SEED out.ply [aretes.xyz] (a knapped flake whose arêtes are known; flakes.h)
 //   rk_make_mesh convert in.obj|in.ply out.ply   (e.g. OBJ files MeshLab 2020.09's importer aborts on)
 //   rk_make_mesh nested-drawing out.png          (the synthetic line drawing of the drawing tests)
 //   rk_make_mesh base-figure CLASS SEED ft out.png (a base-library class drawn in front and top view)
@@ -24,6 +25,7 @@
 #include "bases.h"
 #include "drawings.h"
 #include "finds.h"
+#include "flakes.h"
 #include "mesh_files.h"
 #include "shapes.h"
 #include "sherds.h"
@@ -60,6 +62,19 @@ int main(int argc, char** argv) {
       auto m = rktest::torus(std::atof(argv[2]), std::atof(argv[3]), std::atoi(argv[4]), std::atoi(argv[5]),
                              std::atof(argv[6]), std::atoi(argv[7]));
       rktest::write_ply(argv[8], m);
+    } else if (kind == "flake" && (argc == 4 || argc == 5)) {
+      rktest::FlakeShape shape;
+      shape.seed = uint32_t(std::atol(argv[2]));
+      const rktest::Flake f = rktest::knapped_flake(shape);
+      rktest::write_ply(argv[3], f.relief.mesh);
+      if (argc == 5) {  // the arêtes' samples, "x y z" per line
+        std::FILE* out = std::fopen(argv[4], "w");
+        if (!out) throw std::runtime_error("cannot write the arêtes");
+        for (const auto& p : f.relief.boundary) std::fprintf(out, "%.9g %.9g %.9g\n", p.x(), p.y(), p.z());
+        std::fclose(out);
+      }
+      std::printf("faces %d mean_edge %.9g arete_samples %zu\n", f.relief.mesh.n_faces(), f.relief.mean_edge,
+                  f.relief.boundary.size());
     } else if (kind == "relief-torus" && argc == 4) {
       auto m = rktest::relief_torus(std::atol(argv[2]));
       rktest::write_ply(argv[3], m);
@@ -104,7 +119,7 @@ int main(int argc, char** argv) {
       std::printf("faces %d width %.2f height %.2f thickness through the middle %.2f\n", f.mesh.n_faces(), f.width, f.height,
                   f.thickness_at_middle);
     } else {
-      std::fprintf(stderr, "usage: rk_make_mesh tablet|blade|coin upright|lying out.ply | torus R r nu nv jitter seed out.ply | relief-torus FACES out.ply | "
+      std::fprintf(stderr, "usage: rk_make_mesh tablet|blade|coin upright|lying out.ply | torus R r nu nv jitter seed out.ply | relief-torus FACES out.ply | flake SEED out.ply | "
                            "sphere r levels jitter out.ply | nested-drawing out.png | dome W H cell out.ply | base-figure CLASS SEED VIEWS(fst) out.png | "
                            "goblet-figure out.png\n");
       return 2;

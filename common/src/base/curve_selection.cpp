@@ -1,5 +1,7 @@
 #include "reliefkit/base/curve_selection.h"
 
+#include "reliefkit/base/disjoint_sets.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -264,6 +266,36 @@ void append_curves(Polylines& curves, const Polylines& more) {
   for (const auto& s : more.segments) curves.segments.push_back({s[0] + offset, s[1] + offset});
   curves.segment_face.insert(curves.segment_face.end(), more.segment_face.begin(), more.segment_face.end());
   curves.rejected_faces += more.rejected_faces;
+}
+
+std::vector<int> curve_pieces(const Polylines& c, std::vector<double>& lengths) {
+  DisjointSets sets(static_cast<int>(c.points.size()));
+  for (const auto& s : c.segments) sets.unite(s[0], s[1]);
+  int count = 0;
+  const std::vector<int> piece_of_point = std::move(sets).numbered(count);
+  std::vector<int> piece(c.segments.size());
+  lengths.assign(size_t(count), 0.0);
+  for (size_t k = 0; k < c.segments.size(); ++k) {
+    piece[k] = piece_of_point[size_t(c.segments[k][0])];
+    lengths[size_t(piece[k])] += (c.points[c.segments[k][1]] - c.points[c.segments[k][0]]).norm();
+  }
+  return piece;
+}
+
+CurveStatistics curve_statistics(const Polylines& c, double edge, long long faces) {
+  CurveStatistics st;
+  std::vector<double> lengths;
+  const std::vector<int> piece = curve_pieces(c, lengths);
+  std::vector<char> used(lengths.size(), 0);  // pieces of isolated points (no segment) are not drawn
+  for (int p : piece) used[size_t(p)] = 1;
+  for (size_t p = 0; p < lengths.size(); ++p) {
+    if (!used[p]) continue;
+    ++st.pieces;
+    st.length += lengths[p];
+    if (lengths[p] < kDashEdges * edge) ++st.dashes, st.dash_length += lengths[p];
+  }
+  if (edge > 0 && faces > 0) st.length_per_kface = st.length / edge / (double(faces) / 1000.0);
+  return st;
 }
 
 }  // namespace reliefkit

@@ -184,3 +184,29 @@ TEST(CurveProximity, AppendedCurvesKeepTheirOwnPoints) {
   EXPECT_EQ(c.chains().size(), 2u);
   EXPECT_NEAR(c.total_length(), 2.0, 1e-12);
 }
+
+// A long line 30 edges long with a branch (one piece), a dash 4 edges long, and a loop 4 x 2 = 8
+// edges around (a dash too): 3 pieces, 2 dashes, 12 of 42 edge lengths in dashes.
+TEST(CurveStatistics, PiecesAreJoinedSegmentsAndDashesThoseUnderTenEdges) {
+  Polylines c;
+  auto piece = [&c](std::vector<Vec3> pts, int join_to = -1) {
+    const int base = static_cast<int>(c.points.size());
+    for (const auto& p : pts) c.points.push_back(p), c.strength.push_back(1);
+    if (join_to >= 0) c.segments.push_back({join_to, base}), c.segment_face.push_back(0);
+    for (size_t i = 1; i < pts.size(); ++i) c.segments.push_back({base + int(i) - 1, base + int(i)}), c.segment_face.push_back(0);
+  };
+  piece({{0, 0, 0}, {25, 0, 0}});
+  piece({{10, 1, 0}, {10, 5, 0}}, 0);  // from (0,0,0): sqrt(101) + 4 long, the line's branch
+  piece({{0, 10, 0}, {4, 10, 0}});
+  piece({{0, 20, 0}, {2, 20, 0}, {2, 22, 0}, {0, 22, 0}, {0, 20, 0}});
+  c.points.push_back({50, 50, 0}), c.strength.push_back(1);  // a point no segment uses: not drawn
+  const CurveStatistics st = curve_statistics(c, 1.0, 2000);
+  EXPECT_EQ(st.pieces, 3);
+  EXPECT_EQ(st.dashes, 2);
+  const double line = 25 + std::sqrt(101.0) + 4;
+  EXPECT_NEAR(st.length, line + 4 + 8, 1e-9);
+  EXPECT_NEAR(st.dash_share(), 12 / (line + 12), 1e-9);
+  EXPECT_NEAR(st.length_per_kface, (line + 12) / 2, 1e-9);
+  EXPECT_EQ(curve_statistics(c, 0.1, 2000).dashes, 0);  // at a tenth of the edge, nothing is under 10 edges
+  EXPECT_EQ(curve_statistics(Polylines{}, 1.0, 10).pieces, 0);
+}

@@ -59,4 +59,22 @@ std::vector<char> segments_near(const Polylines& curves, const Polylines& others
 /// Appends `more`'s points and segments to `curves`.
 void append_curves(Polylines& curves, const Polylines& more);
 
+/// Pieces shorter than this many edge lengths are dashes: what an illustrator cleans by hand.
+constexpr double kDashEdges = 10.0;
+
+/// What a curve layer looks like to an illustrator: its pieces (sets of segments joined through
+/// shared points), their length, and the share of it lying in dashes.
+struct CurveStatistics {
+  long long pieces = 0, dashes = 0;  // dashes: pieces shorter than kDashEdges edge lengths
+  double length = 0;                 // mesh units
+  double dash_length = 0;            // in the dashes
+  double length_per_kface = 0;       // in edge lengths per 1,000 faces of the mesh
+  double dash_share() const { return length > 0 ? dash_length / length : 0.0; }
+};
+/// `edge`: the mesh's typical edge length (MeshScale::edge); `faces`: its face count.
+CurveStatistics curve_statistics(const Polylines& curves, double edge, long long faces);
+
+/// Per segment, the piece it belongs to (0, 1, ...), and in `lengths` each piece's length.
+std::vector<int> curve_pieces(const Polylines& curves, std::vector<double>& lengths);
+
 }  // namespace reliefkit
