@@ -23,6 +23,8 @@ import subprocess
 import sys
 import tempfile
 
+from compare_meshlab import count_faces
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BUILD = os.environ.get("RELIEFKIT_BUILD_DIR", os.path.join(ROOT, "build"))
 BATCH = os.path.join(BUILD, "prefix", "bin", "reliefkit-batch")
@@ -54,16 +56,6 @@ def scans(selected):
     return found
 
 
-def faces_of(ply):
-    with open(ply, "rb") as f:
-        for line in f:
-            if line.startswith(b"element face"):
-                return int(line.split()[2])
-            if line.startswith(b"end_header"):
-                break
-    return 0
-
-
 def collection(work, selected, decimated):
     """PLY copies of the scans (MeshLab 2020.09's OBJ importer aborts on some), and decimated ones."""
     folder = os.path.join(work, "scans")
@@ -78,7 +70,7 @@ def collection(work, selected, decimated):
         if os.path.exists(half):
             continue
         out = os.path.join(work, "decimating", stem)
-        subprocess.run([BATCH, "--filter", DECIMATE, "--param", "TargetFaceNum=%d" % (faces_of(ply) // 2),
+        subprocess.run([BATCH, "--filter", DECIMATE, "--param", "TargetFaceNum=%d" % (count_faces(ply) // 2),
                         "--param", "QualityThr=0.3", "--param", "PreserveNormal=true", "--save", "current",
                         ply, out], check=True, capture_output=True)
         made = [os.path.join(dp, f) for dp, _, fs in os.walk(out) for f in fs if f.endswith(".ply")]
