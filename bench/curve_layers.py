@@ -10,8 +10,10 @@ lengths) and its length in edge lengths per 1,000 faces come from the filters' o
 The held-out scans (HELD_OUT, chosen before any default was tuned) are reported apart: defaults
 are chosen on the others only.
 
-Usage: bench/curve_layers.py [--work DIR] [--filters NAME,...] [--scans NAME,...] [--no-decimated]
-Prints a table per filter and the worst dash share of the tuning and held-out scans.
+Usage: bench/curve_layers.py [--work DIR] [--filters NAME,...] [--scans NAME,...] [--no-decimated] [--plates]
+Prints a table per filter and the worst dash share of the tuning and held-out scans. --plates:
+each run also exports the scan's illustration plate with the layer (one view, automatic view,
+multi-directional light) to DIR/out/<filter>/<scan>/plate.svg, as an illustrator would see it.
 """
 import argparse
 import csv
@@ -124,9 +126,28 @@ def layer_statistics(obj, edge, faces):
             "length_per_kface": total / edge / (faces / 1000.0) if edge and faces else 0.0}
 
 
-def run_filter(work, folder, name, keys):
+PLATE = """<!DOCTYPE FilterScript>
+<FilterScript>
+ <filter name="%s"/>
+ <filter name="Export Illustration Plate">
+  <Param type="RichSaveFile" value="{output}/plate.svg" name="file" ext="*.svg"/>
+  <Param type="RichBool" value="false" name="pdf"/>
+  <Param type="RichEnum" value="5" enum_cardinality="8" name="shading"/>
+  <Param type="RichInt" value="150" name="dpi"/>
+ </filter>
+</FilterScript>
+"""
+
+
+def run_filter(work, folder, name, keys, plates):
     out = os.path.join(work, "out", name.replace(" ", "_"))
-    subprocess.run([BATCH, "--filter", name, "--save", "new", folder, out], capture_output=True)
+    recipe = ["--filter", name]
+    if plates:
+        script = os.path.join(work, name.replace(" ", "_") + "_plate.mlx")
+        with open(script, "w") as f:
+            f.write(PLATE % name)
+        recipe = ["--script", script]
+    subprocess.run([BATCH] + recipe + ["--save", "new", folder, out], capture_output=True)
     with open(os.path.join(out, "summary.json")) as f:
         summary = json.load(f)
     rows = {}
@@ -153,6 +174,7 @@ def main():
     ap.add_argument("--filters", default="")
     ap.add_argument("--scans", default="")
     ap.add_argument("--no-decimated", action="store_true")
+    ap.add_argument("--plates", action="store_true")
     a = ap.parse_args()
     work = a.work or tempfile.mkdtemp(prefix="curve-layers-")
     folder = collection(work, set(filter(None, a.scans.split(","))), not a.no_decimated)
@@ -160,7 +182,7 @@ def main():
     worst = {False: 0.0, True: 0.0}
     table = []
     for name, keys in chosen:
-        rows = run_filter(work, folder, name, keys)
+        rows = run_filter(work, folder, name, keys, a.plates)
         print("\n%s (defaults)" % name)
         print("%-32s %8s %7s  %s" % ("scan", "faces", "time s", "  ".join("%-34s" % k for k in keys)))
         for scan in sorted(rows):

@@ -1,6 +1,7 @@
 #include "reliefkit/base/curve_selection.h"
 
 #include "reliefkit/base/disjoint_sets.h"
+#include "reliefkit/base/smoothing.h"
 
 #include <algorithm>
 #include <cmath>
@@ -88,6 +89,23 @@ Polylines drop_short_chains(const Polylines& in, double min_length) {
   return select_segments(in, keep);
 }
 
+namespace {
+
+// A bridge `d` from an end (outward direction a) to another (outward direction b, facing it)
+// follows the line when it leaves both ends within the turn, or when it is a jog: a small step
+// sideways (at most `jog`, mesh units) where the line is broken and shifted, the ends overlapping
+// by at most as much.
+bool bridge_follows_line(const Vec3& a, const Vec3& b, const Vec3& d, double cos_turn, double jog) {
+  const double dist = d.norm();
+  if (!(dist > 0)) return true;
+  if (a.dot(d) >= cos_turn * dist && b.dot(-d) >= cos_turn * dist) return true;
+  const Vec3 along = (a - b).normalized();
+  const double forward = along.dot(d);
+  return forward >= -jog && (d - forward * along).norm() <= jog;
+}
+
+}  // namespace
+
 int link_gaps(Polylines& c, double max_gap, double max_turn) {
   if (!(max_gap > 0) || c.segments.empty()) return 0;
   const int np = static_cast<int>(c.points.size());
@@ -154,8 +172,8 @@ int link_gaps(Polylines& c, double max_gap, double max_turn) {
             const double dist = d.norm();
             if (!(dist <= max_gap)) continue;
             if (ends[i].chain == ends[j].chain && chain_length[ends[i].chain] <= 4 * max_gap) continue;
-            if (dist > 0 && (ends[i].out.dot(d) < cos_turn * dist || ends[j].out.dot(-d) < cos_turn * dist)) continue;
             if (ends[i].out.dot(-ends[j].out) < cos_turn) continue;  // the two ends must face each other
+            if (!bridge_follows_line(ends[i].out, ends[j].out, d, cos_turn, kJogShare * max_gap)) continue;
             pairs.emplace_back(dist, i, j);
           }
         }
@@ -280,6 +298,49 @@ std::vector<int> curve_pieces(const Polylines& c, std::vector<double>& lengths) 
     lengths[size_t(piece[k])] += (c.points[c.segments[k][1]] - c.points[c.segments[k][0]]).norm();
   }
   return piece;
+}
+
+Polylines drop_dashes(const Polylines& c, double min_length) {
+  if (!(min_length > 0) || c.segments.empty()) return c;
+  std::vector<double> lengths;
+  const std::vector<int> piece = curve_pieces(c, lengths);
+  std::vector<char> keep(c.segments.size());
+  for (size_t k = 0; k < c.segments.size(); ++k) keep[k] = lengths[size_t(piece[k])] >= min_length;
+  return select_segments(c, keep);
+}
+
+std::vector<double> local_contrast(const Surface& surface, const std::vector<double>& x, double radius) {
+  std::vector<double> mean = x;
+  diffuse(surface, radius, mean);
+  std::vector<double> spread(x.size());
+  for (size_t v = 0; v < x.size(); ++v) spread[v] = std::abs(x[v] - mean[v]);
+  diffuse(surface, radius, spread);
+  std::vector<double> contrast(x.size(), 0.0);
+  for (size_t v = 0; v < x.size(); ++v)
+    if (spread[v] > 0) contrast[v] = (x[v] - mean[v]) / spread[v];
+  return contrast;
+}
+
+std::vector<double> contrast_weights(const Polylines& c, const std::vector<double>& contrast) {
+  std::vector<double> w = interpolate_at_points(c, contrast);
+  for (double& x : w) x = std::clamp(x / kLineContrast, 0.0, 1.0);
+  return w;
+}
+
+Polylines select_lines(const Polylines& all, double threshold, const LineLinking& linking, double edge,
+                       double min_length, const std::vector<double>& contrast) {
+  const std::vector<double> seed_weight = contrast.empty() ? std::vector<double>{} : contrast_weights(all, contrast);
+  std::vector<char> strong(all.segments.size()), weak(all.segments.size());
+  for (size_t k = 0; k < all.segments.size(); ++k) {
+    const int a = all.segments[k][0], b = all.segments[k][1];
+    const double s = 0.5 * (all.strength[a] + all.strength[b]);
+    const double w = seed_weight.empty() ? 1.0 : 0.5 * (seed_weight[a] + seed_weight[b]);
+    strong[k] = s * w >= threshold;
+    weak[k] = s >= linking.weak_ratio * threshold;
+  }
+  Polylines kept = linking.weak_ratio < 1 ? hysteresis(all, strong, weak) : select_segments(all, strong);
+  if (linking.gap_edges > 0) link_gaps(kept, linking.gap_edges * edge, kLinkTurn);
+  return drop_dashes(kept, min_length);
 }
 
 CurveStatistics curve_statistics(const Polylines& c, double edge, long long faces) {

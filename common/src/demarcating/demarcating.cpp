@@ -144,10 +144,11 @@ DemarcatingResult compute_demarcating(const Surface& surface, const DemarcatingP
   r.gradient = curvature_gradient(*r.curvature);
   r.median_strength = median_positive(counted_values(r.gradient.strength, r.scale.counts));
   if (p.progress) p.progress(92, "Demarcating curves");
-  // The threshold is at least relative x the noise term, so weaker segments need not be built:
-  // only their strengths are collected, for the automatic threshold's percentile.
+  // The threshold is at least relative x the noise term, so segments weaker than the hysteresis'
+  // share of it need not be built: only their strengths are collected, for the automatic
+  // threshold's percentile.
   DemarcatingOptions o;
-  o.min_strength = p.relative_threshold * kNoiseFactor * r.median_strength;
+  o.min_strength = kLineLinking.weak_ratio * p.relative_threshold * kNoiseFactor * r.median_strength;
   o.max_angle = p.max_angle;
   CandidateCrossings candidates = demarcating_candidates(mesh, *r.curvature, r.gradient, o);
   for (double x : candidates.all_strengths) r.strongest_crossing = std::max(r.strongest_crossing, x);
@@ -156,7 +157,7 @@ DemarcatingResult compute_demarcating(const Surface& surface, const DemarcatingP
                                            noise_patch_cells(mesh.n_faces())) / (r.scale.edge * r.scale.edge);
   r.automatic_threshold = std::max(r.automatic_threshold, r.noise_threshold);
   r.threshold = p.relative_threshold * r.automatic_threshold;
-  r.curves = drop_short_chains(keep_strong_segments(candidates.lines, r.threshold), r.min_length);
+  r.curves = select_lines(candidates.lines, r.threshold, kLineLinking, r.scale.edge, r.min_length);
   return r;
 }
 

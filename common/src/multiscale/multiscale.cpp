@@ -99,7 +99,10 @@ MultiscaleRidgeValleys multiscale_ridges_valleys(const Surface& surface, Optimal
     // already the noise's 99th percentile.
     const double threshold =
         params.relative_threshold * automatic_curve_threshold(kCurveNoise * r.scale.strength_floor / kNoiseFactor, seg);
-    Polylines kept = select_ridge_lines(all, threshold, params.linking, r.scale.scale.edge, c.min_length);
+    // A line starts only where it stands out of the surface's own roughness (local_contrast).
+    const std::vector<double> contrast =
+        local_contrast(smoothed_surface, feature, kContrastRadiusEdges * r.scale.scale.edge);
+    Polylines kept = select_lines(all, threshold, params.linking, r.scale.scale.edge, c.min_length, contrast);
     place_on_mesh(surface.mesh(), kept);
     (valleys ? c.valleys : c.ridges) = std::move(kept);
     (valleys ? c.valley_threshold : c.ridge_threshold) = threshold;
@@ -141,7 +144,7 @@ std::vector<double> noise_tilt_at_scales(const OptimalScale& s, double final_smo
 void add_other_scale(Polylines& curves, const Polylines& other, double edge, double min_length) {
   std::vector<char> add = segments_near(other, curves, kSameEdgeEdges * edge);
   for (char& k : add) k = !k;
-  append_curves(curves, drop_short_chains(select_segments(other, add), min_length));
+  append_curves(curves, drop_dashes(select_segments(other, add), min_length));
 }
 
 // A line blurred by the finest reading's pre-smoothing σ is flanked by lines of the other kind
@@ -154,7 +157,7 @@ void add_other_scale(Polylines& curves, const Polylines& other, double edge, dou
 void drop_blurred_flanks(Polylines& finest, const Polylines& near, double sigma, double min_length) {
   std::vector<char> keep = segments_near(finest, near, kFlankReach * sigma);
   for (char& k : keep) k = !k;
-  finest = drop_short_chains(select_segments(finest, keep), min_length);
+  finest = drop_dashes(select_segments(finest, keep), min_length);
 }
 
 void add_finest_scale_lines(const Surface& surface, RidgeValleyParams params, const OptimalScale& scale,

@@ -281,7 +281,7 @@ void select_edges(const ReliefEdgeParams& p, const Polylines& all, const std::ve
   }
   Polylines kept = hysteresis(all, strong, weak);
   r.links = link_gaps(kept, p.link_gap_edges * r.scale.edge, kLinkTurn);
-  r.edges = drop_short_chains(kept, r.min_length);
+  r.edges = drop_dashes(kept, r.min_length);
 }
 
 // Per-vertex guidance must have one value per vertex (or none).

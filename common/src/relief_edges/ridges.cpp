@@ -71,19 +71,6 @@ void RidgeValleyParams::validate() const {
   require_range(linking.gap_edges, "Bridge gaps up to", 0, 20);
 }
 
-Polylines select_ridge_lines(const Polylines& all, double threshold, const LineLinking& linking, double edge,
-                             double min_length) {
-  std::vector<char> strong(all.segments.size()), weak(all.segments.size());
-  for (size_t k = 0; k < all.segments.size(); ++k) {
-    const double s = 0.5 * (all.strength[all.segments[k][0]] + all.strength[all.segments[k][1]]);
-    strong[k] = s >= threshold;
-    weak[k] = s >= linking.weak_ratio * threshold;
-  }
-  Polylines kept = linking.weak_ratio < 1 ? hysteresis(all, strong, weak) : select_segments(all, strong);
-  if (linking.gap_edges > 0) link_gaps(kept, linking.gap_edges * edge, kLinkTurn);
-  return drop_short_chains(kept, min_length);
-}
-
 namespace {
 
 // The smallest threshold at which `lines` (drawn by noise alone) keep no line through the
@@ -94,7 +81,7 @@ double quiet_threshold(const Polylines& lines, const RidgeValleyParams& p, doubl
   const double min_length = p.min_length_edges * edge;
   for (int it = 0; it < 30 && hi > 0; ++it) {
     const double mid = 0.5 * (lo + hi);
-    (select_ridge_lines(lines, mid, p.linking, edge, min_length).segments.empty() ? hi : lo) = mid;
+    (select_lines(lines, mid, p.linking, edge, min_length).segments.empty() ? hi : lo) = mid;
   }
   return hi;
 }
@@ -168,8 +155,14 @@ RidgeValleyResult compute_ridges_valleys(const Surface& surface, const RidgeVall
   const RidgeStrengths by_noise = scan_noise_ridge_strengths(r, mesh.n_faces(), p, noise_patch);
   r.ridge_threshold = p.relative_threshold * std::max(automatic_curve_threshold(noise_r, std::move(cand_r.all_strengths)), by_noise.ridges / r.scale.edge);
   r.valley_threshold = p.relative_threshold * std::max(automatic_curve_threshold(noise_v, std::move(cand_v.all_strengths)), by_noise.valleys / r.scale.edge);
-  r.ridges = select_ridge_lines(cand_r.lines, r.ridge_threshold, p.linking, r.scale.edge, r.min_length);
-  r.valleys = select_ridge_lines(cand_v.lines, r.valley_threshold, p.linking, r.scale.edge, r.min_length);
+  // A line starts only where it stands out of the surface's own roughness (local_contrast).
+  const double radius = contrast_radius(r.scale.edge, r.presmoothing);
+  std::vector<double> minus_k2(r.curvature->k2.size());
+  for (size_t v = 0; v < minus_k2.size(); ++v) minus_k2[v] = -r.curvature->k2[v];
+  r.ridges = select_lines(cand_r.lines, r.ridge_threshold, p.linking, r.scale.edge, r.min_length,
+                          local_contrast(surface, r.curvature->k1, radius));
+  r.valleys = select_lines(cand_v.lines, r.valley_threshold, p.linking, r.scale.edge, r.min_length,
+                           local_contrast(surface, minus_k2, radius));
   return r;
 }
 

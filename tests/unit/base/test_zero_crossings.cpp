@@ -1,8 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 
+#include "reliefkit/base/curvature.h"
 #include "reliefkit/base/curve_selection.h"
+#include "reliefkit/base/surface.h"
 #include "reliefkit/base/zero_crossings.h"
 #include "shapes.h"
 
@@ -146,6 +150,28 @@ TEST(LinkGaps, JoinsEndsThatFaceEachOtherOnly) {
   EXPECT_EQ(link_gaps(c, 2.5, 0.785), 0);
 }
 
+// A line broken and shifted sideways by less than a triangle (its ends side by side, 0.4 apart
+// across it, overlapping by 0.2) is a jog and is joined; shifted by 1.5 it is two lines.
+TEST(LinkGaps, JoinsAJogButNotTwoParallelLines) {
+  auto two_pieces = [](double shift) {
+    Polylines c;
+    for (int piece = 0; piece < 2; ++piece) {
+      const int base = static_cast<int>(c.points.size());
+      for (int i = 0; i < 5; ++i) {
+        const double x = piece == 0 ? i : 3.8 + i;
+        c.points.push_back({x, piece == 0 ? 0.0 : shift, 0});
+        c.strength.push_back(1);
+      }
+      for (int i = 1; i < 5; ++i) c.segments.push_back({base + i - 1, base + i}), c.segment_face.push_back(0);
+    }
+    return c;
+  };
+  Polylines jog = two_pieces(0.4), apart = two_pieces(1.5);
+  EXPECT_EQ(link_gaps(jog, 3.0, kLinkTurn), 1);
+  EXPECT_EQ(jog.chains().size(), 1u);
+  EXPECT_EQ(link_gaps(apart, 3.0, kLinkTurn), 0);
+}
+
 namespace {
 // A straight polyline from `from` to `to` in `n` segments, every point of strength 1.
 Polylines straight(const Vec3& from, const Vec3& to, int n) {
@@ -209,4 +235,49 @@ TEST(CurveStatistics, PiecesAreJoinedSegmentsAndDashesThoseUnderTenEdges) {
   EXPECT_NEAR(st.length_per_kface, (line + 12) / 2, 1e-9);
   EXPECT_EQ(curve_statistics(c, 0.1, 2000).dashes, 0);  // at a tenth of the edge, nothing is under 10 edges
   EXPECT_EQ(curve_statistics(Polylines{}, 1.0, 10).pieces, 0);
+}
+
+// Pieces of 12, 6 and 9.5 long and a branched one (8 + 4 through a shared point), min length 10:
+// the 12 and the branched piece stay, whatever the strengths.
+TEST(DropDashes, PiecesShorterThanTheLengthGoWholeBranchesCountingTogether) {
+  Polylines c;
+  auto piece = [&c](std::vector<Vec3> pts, int id) {
+    const int base = static_cast<int>(c.points.size());
+    for (const auto& p : pts) c.points.push_back(p), c.strength.push_back(5.0);
+    for (size_t i = 1; i < pts.size(); ++i) c.segments.push_back({base + int(i) - 1, base + int(i)}), c.segment_face.push_back(id);
+  };
+  piece({{0, 0, 0}, {6, 0, 0}, {12, 0, 0}}, 0);
+  piece({{0, 1, 0}, {6, 1, 0}}, 1);
+  piece({{0, 2, 0}, {9.5, 2, 0}}, 2);
+  piece({{0, 3, 0}, {4, 3, 0}, {8, 3, 0}}, 3);
+  piece({{4, 3, 0}, {4, 7, 0}}, 3);  // a branch from the middle point: drawn as its own point, joined below
+  c.segments.back()[0] = c.segments[c.segments.size() - 2][1] - 1;  // (4, 3): the branched piece's middle point
+  const Polylines kept = drop_dashes(c, 10.0);
+  std::vector<int> faces = kept.segment_face;
+  std::sort(faces.begin(), faces.end());
+  EXPECT_EQ(faces, (std::vector<int>{0, 0, 3, 3, 3}));
+  EXPECT_EQ(drop_dashes(c, 0.0).segments.size(), c.segments.size());
+}
+
+// The contrast of k1 (local_contrast, radius 8 edge lengths): a crease on a smooth plane stands
+// far out of its surroundings; the crests of a sinusoid (ripples 8 edge lengths apart) stand
+// about π/2 spreads above them, a rough surface's own level, below kLineContrast.
+TEST(LocalContrast, ACreaseStandsOutOfItsSurroundingsRipplesDoNot) {
+  auto contrast_at_line = [](const std::function<double(double, double)>& z) {
+    const TriMesh m = rktest::height_field(z, 1.0, 100, 0.3, 3);
+    const Surface s = Surface::borrow(m);
+    const Curvature c = compute_curvature(m);
+    const double h = s.scale().edge;
+    const std::vector<double> contrast = local_contrast(s, c.k1, 8 * h);
+    double best = 0;  // the largest contrast within an edge length of the line x = 0, away from the border
+    for (int v = 0; v < m.n_vertices(); ++v)
+      if (std::abs(m.vertices[v].x()) < h && std::abs(m.vertices[v].y()) < 0.5) best = std::max(best, contrast[v]);
+    return best;
+  };
+  const double crease = contrast_at_line([](double x, double) { return -0.1 * std::abs(x); });
+  const double ripple = contrast_at_line([](double x, double) { return 0.004 * std::cos(2 * M_PI * x / 0.16); });
+  std::printf("contrast at the crease %.2f, at a ripple's crest %.2f\n", crease, ripple);
+  EXPECT_GT(crease, 2 * kLineContrast);
+  EXPECT_LT(ripple, kLineContrast);
+  EXPECT_GT(ripple, 1.0);
 }

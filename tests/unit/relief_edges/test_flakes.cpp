@@ -6,9 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "flakes.h"
+#include "reliefkit/base/curve_selection.h"
+#include "reliefkit/relief_edges/ridges.h"
 #include "shapes.h"
 
 using namespace reliefkit;
@@ -66,4 +69,29 @@ TEST(Flakes, TheAretesAreCreasesOfTheDorsalSurface) {
   ASSERT_GT(on_arete.size(), 200u);
   EXPECT_GT(rktest::median(on_arete), 5.0);
   EXPECT_LT(rktest::percentile(elsewhere, 0.99), 0.5 * rktest::median(on_arete));
+}
+
+// "Ridges and Valleys" at its defaults on a flake (seed 1, 102,400 faces): the flake's edge whole,
+// no dashes, little on the cortex and the scars' ripples. Measured (bench/bench_flakes, seeds 1-3):
+// edge found 0.998-1.000, precision 0.83-0.89, arêtes found 0.57-0.66, no dashes. Issue 59 asks for
+// 0.9 of the arêtes: those missed lie between two scars, shallow creases beside the scars'
+// ripples (bench_flakes --svg draws them; docs/curve-layers.md).
+TEST(Flakes, RidgesAtDefaultsDrawTheEdgeWholeAndLittleElse) {
+  rktest::FlakeShape shape;
+  const rktest::Flake f = rktest::knapped_flake(shape);
+  const RidgeValleyResult r = compute_ridges_valleys(f.relief.mesh);
+  const double tol = 2 * f.relief.mean_edge;
+  rktest::Relief lines = f.relief, edge = f.relief;
+  lines.boundary.insert(lines.boundary.end(), f.edge.begin(), f.edge.end());
+  edge.boundary = f.edge;
+  const double edge_found = rktest::score(edge, r.ridges, tol).recall;
+  const double precision = rktest::score(lines, r.ridges, tol).precision;
+  const double aretes = rktest::score(f.relief, r.ridges, tol).recall;
+  const CurveStatistics st = curve_statistics(r.ridges, r.scale.edge, f.relief.mesh.n_faces());
+  std::printf("edge found %.3f, precision %.3f, arêtes found %.3f, dash share %.3f\n", edge_found, precision, aretes,
+              st.dash_share());
+  EXPECT_GE(edge_found, 0.98);
+  EXPECT_GE(precision, 0.78);
+  EXPECT_GE(aretes, 0.5);
+  EXPECT_LE(st.dash_share(), 0.1);
 }

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "reliefkit/base/curvature.h"
+#include "reliefkit/base/curve_selection.h"
 #include "reliefkit/base/zero_crossings.h"
 
 namespace reliefkit {
@@ -63,7 +64,7 @@ CandidateCrossings demarcating_candidates(const TriMesh& mesh, const Curvature& 
 /// with the median vertex strength (over the vertices that count, MeshScale) as noise scale.
 struct DemarcatingParams {
   static constexpr double kDefaultRelativeThreshold = 1.0;  // x automatic threshold
-  static constexpr double kDefaultMinLengthEdges = 4.0;     // x edge length
+  static constexpr double kDefaultMinLengthEdges = kDashEdges;  // x edge length
   CurvatureEstimator estimator = CurvatureEstimator::Jet;
   Length presmoothing = Length::automatic();  // automatic: from the noise level
   double relative_threshold = kDefaultRelativeThreshold;

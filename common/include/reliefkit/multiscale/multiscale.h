@@ -83,7 +83,7 @@ void add_finest_scale_lines(const Surface& surface, RidgeValleyParams params, co
 /// filter's default minimum length is kMultiscaleMinLengthEdges (the thresholds alone left 19-63 %
 /// of the length in pieces under 10 edge lengths on the shared scans and decimated copies).
 constexpr LineLinking kConnectingLines{0.5, 6.0};
-constexpr double kMultiscaleMinLengthEdges = 8.0;
+constexpr double kMultiscaleMinLengthEdges = kDashEdges;
 
 /// `scale.curve` is set to the detector's strength; `params.presmoothing` is ignored (the optimal
 /// scale replaces it). The run's `surface` gives the scan's topology, scale and noise. Ridges and

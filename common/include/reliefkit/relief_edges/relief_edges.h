@@ -15,6 +15,7 @@
 
 #include "reliefkit/relief_edges/base_normals.h"
 #include "reliefkit/base/curvature.h"
+#include "reliefkit/base/curve_selection.h"
 #include "reliefkit/base/noise_patch.h"
 #include "reliefkit/base/zero_crossings.h"
 
@@ -34,7 +35,7 @@ double edge_fit_error(const CurvatureDerivative& C, double k1, double k2, double
 
 struct ReliefEdgeParams {  // what the user chooses
   static constexpr double kDefaultEdgeSmoothingEdges = 0.8;  // x edge length (thesis 4.4)
-  static constexpr double kDefaultMinLengthEdges = 2.0;      // x edge length
+  static constexpr double kDefaultMinLengthEdges = kDashEdges;  // x edge length
   static constexpr double kDefaultFitRadiusEdges = 4.0;      // x edge length (see relief_edges.md)
   static constexpr double kDefaultLinkGapEdges = 3.0;        // x edge length
   CurvatureEstimator estimator = CurvatureEstimator::Jet;

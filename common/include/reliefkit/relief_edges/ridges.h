@@ -10,26 +10,19 @@
 #pragma once
 
 #include "reliefkit/base/curvature.h"
+#include "reliefkit/base/curve_selection.h"
 #include "reliefkit/base/noise_patch.h"
 #include "reliefkit/base/zero_crossings.h"
 
 namespace reliefkit {
 
-/// How lines are connected after the threshold: segments at least weak_ratio x the threshold are
-/// kept where they join one above it (hysteresis), and chain ends facing each other across up to
-/// gap_edges edge lengths are joined. The default keeps what the threshold cuts.
-struct LineLinking {
-  double weak_ratio = 1.0;
-  double gap_edges = 0;
-};
-
 struct RidgeValleyParams {
-  static constexpr double kDefaultMinLengthEdges = 4.0;
+  static constexpr double kDefaultMinLengthEdges = kDashEdges;
   CurvatureEstimator estimator = CurvatureEstimator::Jet;
   Length presmoothing = Length::automatic();  // automatic: from the noise level
   double relative_threshold = 1.0;   // x automatic threshold (automatic_curve_threshold)
   double min_length_edges = kDefaultMinLengthEdges;
-  LineLinking linking;  // the single-scale filter keeps what the threshold cuts; the multi-scale one connects
+  LineLinking linking = kLineLinking;
   Progress progress = nullptr;
   /// Throws InputError naming the first parameter out of its range.
   void validate() const;
@@ -47,11 +40,6 @@ Polylines ridge_lines(const TriMesh& mesh, const Curvature& c, bool valleys, dou
 /// The same, with the strengths of all crossing segments (CandidateCrossings).
 CandidateCrossings ridge_candidates(const TriMesh& mesh, const Curvature& c, bool valleys, double min_strength);
 
-/// The lines kept of all candidate crossings (strengths per point): those above `threshold`, and
-/// with linking.weak_ratio < 1 the weaker ones down to weak_ratio x it joined to them (hysteresis);
-/// gaps bridged (linking.gap_edges); chains shorter than `min_length` (mesh units) dropped.
-Polylines select_ridge_lines(const Polylines& candidates, double threshold, const LineLinking& linking, double edge,
-                             double min_length);
 
 /// What noise alone draws: the least thresholds (ridges, valleys) at which the lines of a noise
 /// patch (noise_patch(.., n), carrying the scan's noise), after the same pre-smoothing and the
