@@ -61,14 +61,10 @@ int main(int argc, char** argv) {
     shape.seed = seed;
     const rktest::Flake f = rktest::knapped_flake(shape);
     const RidgeValleyResult r = compute_ridges_valleys(f.relief.mesh);
-    const double tol = 2 * f.relief.mean_edge;
-    rktest::Relief lines = f.relief, edge = f.relief;
-    lines.boundary.insert(lines.boundary.end(), f.edge.begin(), f.edge.end());
-    edge.boundary = f.edge;
+    const rktest::FlakeScore sc = rktest::score_flake(f, r.ridges, 2 * f.relief.mean_edge);
     const CurveStatistics st = curve_statistics(r.ridges, r.scale.edge, f.relief.mesh.n_faces());
-    std::printf("%5u %8d %14.3f %10.3f %11.3f %11.3f %7lld\n", seed, f.relief.mesh.n_faces(),
-                rktest::score(f.relief, r.ridges, tol).recall, rktest::score(lines, r.ridges, tol).precision,
-                rktest::score(edge, r.ridges, tol).recall, st.dash_share(), st.pieces);
+    std::printf("%5u %8d %14.3f %10.3f %11.3f %11.3f %7lld\n", seed, f.relief.mesh.n_faces(), sc.aretes_found,
+                sc.precision, sc.edge_found, st.dash_share(), st.pieces);
     if (!svg.empty()) write_svg(svg + std::to_string(seed) + ".svg", f, r.ridges);
   }
   return 0;

@@ -166,4 +166,12 @@ Flake knapped_flake(const FlakeShape& s) {
   return f;
 }
 
+FlakeScore score_flake(const Flake& f, const reliefkit::Polylines& curves, double tolerance) {
+  Relief lines = f.relief, edge = f.relief;
+  lines.boundary.insert(lines.boundary.end(), f.edge.begin(), f.edge.end());
+  edge.boundary = f.edge;
+  return {score(f.relief, curves, tolerance).recall, score(lines, curves, tolerance).precision,
+          score(edge, curves, tolerance).recall};
+}
+
 }  // namespace rktest

@@ -32,4 +32,12 @@ struct Flake {
 
 Flake knapped_flake(const FlakeShape& shape);
 
+/// Curves (a ridge layer) against a flake, within `tolerance` (mesh units): the share of the
+/// arêtes' length found, the share of the curves' length on an arête or on the flake's edge, the
+/// share of the edge found.
+struct FlakeScore {
+  double aretes_found = 0, precision = 0, edge_found = 0;
+};
+FlakeScore score_flake(const Flake& flake, const reliefkit::Polylines& curves, double tolerance);
+
 }  // namespace rktest

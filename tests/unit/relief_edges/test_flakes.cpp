@@ -80,18 +80,12 @@ TEST(Flakes, RidgesAtDefaultsDrawTheEdgeWholeAndLittleElse) {
   rktest::FlakeShape shape;
   const rktest::Flake f = rktest::knapped_flake(shape);
   const RidgeValleyResult r = compute_ridges_valleys(f.relief.mesh);
-  const double tol = 2 * f.relief.mean_edge;
-  rktest::Relief lines = f.relief, edge = f.relief;
-  lines.boundary.insert(lines.boundary.end(), f.edge.begin(), f.edge.end());
-  edge.boundary = f.edge;
-  const double edge_found = rktest::score(edge, r.ridges, tol).recall;
-  const double precision = rktest::score(lines, r.ridges, tol).precision;
-  const double aretes = rktest::score(f.relief, r.ridges, tol).recall;
+  const rktest::FlakeScore sc = rktest::score_flake(f, r.ridges, 2 * f.relief.mean_edge);
   const CurveStatistics st = curve_statistics(r.ridges, r.scale.edge, f.relief.mesh.n_faces());
-  std::printf("edge found %.3f, precision %.3f, arêtes found %.3f, dash share %.3f\n", edge_found, precision, aretes,
-              st.dash_share());
-  EXPECT_GE(edge_found, 0.98);
-  EXPECT_GE(precision, 0.78);
-  EXPECT_GE(aretes, 0.5);
+  std::printf("edge found %.3f, precision %.3f, arêtes found %.3f, dash share %.3f\n", sc.edge_found, sc.precision,
+              sc.aretes_found, st.dash_share());
+  EXPECT_GE(sc.edge_found, 0.98);
+  EXPECT_GE(sc.precision, 0.78);
+  EXPECT_GE(sc.aretes_found, 0.5);
   EXPECT_LE(st.dash_share(), 0.1);
 }
