@@ -57,7 +57,8 @@ void plate_parameters(const MeshModel&, RichParameterList& par) {
                             "beside the mesh's file."));
   par.addParam(RichBool("pdf", true, "Also as PDF", "Writes the same page as a PDF beside the SVG."));
   par.addParam(RichString("layers", "all", "Curve layers",
-                          "\"all\": every layer of curves; or the names of the layers to draw, separated by ';'."));
+                          "\"all\": every layer of curves; or the names of the layers to draw, separated by ';', where '*' "
+                          "stands for any text (\"*ridges\": the ridges of whatever mesh a script meets)."));
   par.addParam(RichEnum("view", 0, kViews, "View", "Automatic: a relief (a coin, a plaque, a sherd: its least extent "
                                                    "under a third of the others) faced along its least extent, from "
                                                    "the side its normals face; any other object (a figurine, a bust, "
@@ -129,21 +130,44 @@ PlateCurves curves_of(MeshModel& m, double width_mm) {
 
 // The layers of curves to draw: every layer of edges without faces, or the ones named (each must
 // be there and hold curves).
+// A wanted name matches a layer's name exactly or, with '*' in it, as a pattern: each '*' stands
+// for any text ("*ridges": the ridges of whatever mesh a script meets).
+bool name_matches(const QString& wanted, const QString& label) {
+  if (!wanted.contains('*')) return wanted == label;
+  const QStringList parts = wanted.split('*');
+  if (!label.startsWith(parts.front()) || !label.endsWith(parts.back()) ||
+      label.size() < parts.front().size() + parts.back().size())
+    return false;
+  int at = parts.front().size();
+  const int end = label.size() - parts.back().size();
+  for (int k = 1; k + 1 < parts.size(); ++k) {
+    at = label.indexOf(parts[k], at);
+    if (at < 0 || at + parts[k].size() > end) return false;
+    at += parts[k].size();
+  }
+  return true;
+}
+
 std::vector<PlateCurves> curve_layers(FilterCall& call, const QString& wanted, double width_mm) {
   QStringList names;
   for (const QString& n : wanted.split(';')) if (!n.trimmed().isEmpty()) names << n.trimmed();
   const bool all = names.isEmpty() || (names.size() == 1 && names[0].toLower() == "all");
+  std::vector<char> matched(size_t(names.size()), 0);
   std::vector<PlateCurves> layers;
   for (MeshModel* m : document_layers(call.doc)) {
     const bool curves = m->cm.fn == 0 && m->cm.en > 0;
-    if (all ? curves : names.removeAll(m->label()) > 0) {
-      if (!curves)
-        throw InputError(qUtf8Printable("The layer \"" + m->label() + "\" holds " + (m->cm.fn > 0 ? "a surface" : "no edges") +
-                                        ", not curves: name a layer of curves (Demarcating Curves, Relief Edges...)."));
-      layers.push_back(curves_of(*m, width_mm));
-    }
+    bool named = false;
+    for (int k = 0; k < names.size(); ++k)
+      if (!all && name_matches(names[k], m->label())) named = matched[size_t(k)] = 1;
+    if (!(all ? curves : named)) continue;
+    if (!curves)
+      throw InputError(qUtf8Printable("The layer \"" + m->label() + "\" holds " + (m->cm.fn > 0 ? "a surface" : "no edges") +
+                                      ", not curves: name a layer of curves (Demarcating Curves, Relief Edges...)."));
+    layers.push_back(curves_of(*m, width_mm));
   }
-  if (!all && !names.isEmpty()) throw InputError(qUtf8Printable("No layer is called " + names.join(" or ") + "."));
+  QStringList missing;
+  for (int k = 0; k < names.size(); ++k) if (!all && !matched[size_t(k)]) missing << names[k];
+  if (!missing.isEmpty()) throw InputError(qUtf8Printable("No layer is called " + missing.join(" or ") + "."));
   return layers;
 }
 

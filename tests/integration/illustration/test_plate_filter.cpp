@@ -138,6 +138,12 @@ TEST(PlateFilter, AnA4PageAndBadInput) {
   // A layer asked for by a name that is not there.
   run = run_filters("plate_bad_name", r.mesh, {demarcating(), plate("x.svg", 0, 0, "no such layer")}, {}, &dir);
   EXPECT_NE(run.output.find("No layer is called no such layer"), std::string::npos) << run.output;
+  // Names with '*' are patterns: one matching the curve layer draws it, one matching nothing is refused.
+  run = run_filters("plate_pattern", r.mesh, {demarcating(), plate("p.svg", 0, 0, "*curves")}, {}, &dir);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(read_text(dir + "/p.svg").find("demarcating curves\""), std::string::npos);
+  run = run_filters("plate_pattern_none", r.mesh, {demarcating(), plate("q.svg", 0, 0, "*ridges")}, {}, &dir);
+  EXPECT_NE(run.output.find("No layer is called *ridges"), std::string::npos) << run.output;
   // A layer named that is a surface, not curves.
   run = run_filters("plate_surface_named", r.mesh, {demarcating(), plate("x.svg", 0, 0, "in.ply")}, {}, &dir);
   EXPECT_NE(run.output.find("The layer \"in.ply\" holds a surface, not curves"), std::string::npos) << run.output;
@@ -244,4 +250,7 @@ TEST(PlateFilter, TheLithicExampleDrawsABladeWithItsSection) {
   for (const char* name : {">dorsal face<", ">right profile<", ">ventral face<", ">section<"}) EXPECT_NE(svg.find(name), std::string::npos) << name;
   EXPECT_NE(svg.find("<g id=\"section\""), std::string::npos);
   EXPECT_EQ(svg.find("<g id=\"scale bar\""), svg.rfind("<g id=\"scale bar\""));
+  // The arêtes (the ridges, named "*ridges" in the example) are drawn, the valleys not.
+  EXPECT_NE(svg.find("ridges\""), std::string::npos);
+  EXPECT_EQ(svg.find("valleys\""), std::string::npos);
 }
