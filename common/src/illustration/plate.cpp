@@ -113,9 +113,12 @@ void add_scale_bar(Plate& plate, double content_height_mm) {
 }
 
 ViewPanel render_view(const TriMesh& mesh, const std::vector<double>& grey, const std::vector<PlateCurves>& layers,
-                      const PageFrame& frame, const PlateParams& params) {
+                      const PageFrame& frame, const PlateParams& params, double outline_mm) {
   const DepthRaster raster = rasterize(mesh, grey, frame, params);
   Plate scratch;  // add_visible_paths counts into a plate
+  if (outline_mm > 0)
+    for (std::vector<Vec2>& line : silhouette_outline(raster, params.simplify_px))
+      scratch.paths.push_back(PlatePath{std::move(line), outline_mm, "outline"});
   for (size_t k = 0; k < layers.size(); ++k) add_visible_paths(scratch, layers[k], int(k), frame, raster, params);
   ViewPanel panel;
   panel.shading = raster.grey;

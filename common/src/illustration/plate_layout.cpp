@@ -306,6 +306,11 @@ Plate make_panels_plate(const std::vector<PlatePanel>& panels, const PlateParams
   const double px_per_mm = params.dpi / 25.4;
   plate.shading = cv::Mat(int(std::ceil(grid.size().y() * px_per_mm)) + 1, int(std::ceil(grid.size().x() * px_per_mm)) + 1, CV_8U,
                           cv::Scalar(255));
+  // Each view outlined with the heavy pen, as finds are drawn (the outline heavier than the lines within).
+  double curve_width = 0;
+  for (const PlatePanel& p : panels)
+    for (const PlateCurves& l : p.layers ? *p.layers : std::vector<PlateCurves>{}) curve_width = std::max(curve_width, l.width_mm);
+  if (!(curve_width > 0)) curve_width = PlateCurves().width_mm;
   for (size_t k = 0; k < panels.size(); ++k) {
     const PlatePanel& p = panels[k];
     if (params.progress) params.progress(int(100 * k / panels.size()), ("Plate: the " + p.view.name).c_str());
@@ -316,7 +321,7 @@ Plate make_panels_plate(const std::vector<PlatePanel>& panels, const PlateParams
     // Snapped to whole pixels so that the raster and the lines of a view stay together.
     const Vec2 snapped(std::round(at.x() * px_per_mm) / px_per_mm, std::round(at.y() * px_per_mm) / px_per_mm);
     ViewPanel drawn = render_view(*p.mesh, p.grey ? *p.grey : std::vector<double>{}, p.layers ? *p.layers : std::vector<PlateCurves>{},
-                                  frame, one);
+                                  frame, one, kOutlineWeight * curve_width);
     paste(plate.shading, drawn.shading, snapped, px_per_mm);
     for (PlatePath& path : drawn.paths) {
       for (Vec2& q : path.points) q += snapped + plate.drawing_origin_mm;

@@ -181,4 +181,23 @@ DepthRaster rasterize(const TriMesh& mesh, const std::vector<double>& grey, cons
   return r;
 }
 
+std::vector<std::vector<Vec2>> silhouette_outline(const DepthRaster& raster, double simplify_px) {
+  cv::Mat seen(raster.depth.size(), CV_8U, cv::Scalar(0));
+  for (int y = 0; y < seen.rows; ++y)
+    for (int x = 0; x < seen.cols; ++x) seen.at<uchar>(y, x) = std::isfinite(raster.depth.at<double>(y, x)) ? 255 : 0;
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(seen, contours, cv::RETR_LIST, cv::CHAIN_APPROX_NONE);
+  std::vector<std::vector<Vec2>> outline;
+  for (const auto& contour : contours) {
+    if (contour.size() < 16) continue;
+    std::vector<cv::Point> simple;
+    cv::approxPolyDP(contour, simple, std::max(simplify_px, 0.25), true);
+    std::vector<Vec2> line;
+    for (const cv::Point& q : simple) line.emplace_back((q.x + 0.5) / raster.px_per_mm, (q.y + 0.5) / raster.px_per_mm);
+    line.push_back(line.front());
+    outline.push_back(std::move(line));
+  }
+  return outline;
+}
+
 }  // namespace reliefkit

@@ -52,8 +52,17 @@ double standard_ratio(const std::function<Vec2(double)>& content_at, const Plate
 /// The frame at `ratio` (drawn / real) from the frame at 1:1.
 PageFrame at_ratio(PageFrame frame, double ratio);
 
+/// The outline of the surface seen: the edges of its silhouette (the rims of holes through the
+/// object too) as closed polylines in millimetres from the drawing's top-left, simplified within
+/// `simplify_px` pixels; specks under 16 pixels left out.
+std::vector<std::vector<Vec2>> silhouette_outline(const DepthRaster& raster, double simplify_px);
+
+/// A layout's outlines are this many times its curves' width: the heavy pen of the three.
+constexpr double kOutlineWeight = 0.5 / 0.35;
+
 /// One view drawn at its frame's scale: the shading raster and the visible curves (millimetres
-/// from the view's top-left), the segments counted.
+/// from the view's top-left), the segments counted; with `outline_mm` > 0, the view's outline
+/// (silhouette_outline) too, that wide, in the layer "outline".
 struct ViewPanel {
   cv::Mat shading;
   std::vector<PlatePath> paths;
@@ -61,7 +70,7 @@ struct ViewPanel {
   long visible = 0, hidden = 0, outside = 0;
 };
 ViewPanel render_view(const TriMesh& mesh, const std::vector<double>& grey, const std::vector<PlateCurves>& layers,
-                      const PageFrame& frame, const PlateParams& params);
+                      const PageFrame& frame, const PlateParams& params, double outline_mm = 0);
 
 /// An empty page for content of this size: its size (fitted or fixed, InputError when too small)
 /// and the content's top-left (drawing_origin_mm), the margins, titles and the bar's room around it.

@@ -576,6 +576,25 @@ TEST(PlateLayout, ABladesDorsalFaceLongAxisAndSection) {
   bool line = false;
   for (const PlatePath& path : p.paths) line |= path.layer == "section line" && path.points.size() == 2;
   EXPECT_TRUE(line);
+  // Each view outlined with the heavy pen (0.5 mm for the default 0.35 mm curves): the dorsal
+  // face's outline closed, as wide as the blade at 2:1 and centred under the view's name.
+  std::vector<const PlatePath*> outlines;
+  for (const PlatePath& path : p.paths)
+    if (path.layer == "outline") outlines.push_back(&path);
+  ASSERT_GE(outlines.size(), 3u);
+  for (const PlatePath* o : outlines) {
+    EXPECT_NEAR(o->width_mm, 0.5, 1e-9);
+    EXPECT_EQ(o->points.front(), o->points.back());
+  }
+  const PlatePath* dorsal = *std::min_element(outlines.begin(), outlines.end(), [&](const PlatePath* a, const PlatePath* b) {
+    return std::abs(a->points[0].x() - dorsal_centre) < std::abs(b->points[0].x() - dorsal_centre);
+  });
+  Eigen::AlignedBox2d outline;
+  for (const Vec2& q : dorsal->points) outline.extend(q);
+  std::printf("dorsal outline %.2f mm wide, centred at %.2f (name at %.2f)\n", outline.sizes().x(), outline.center().x(),
+              dorsal_centre);
+  EXPECT_NEAR(outline.sizes().x(), 2 * blade.width, 0.4);
+  EXPECT_NEAR(outline.center().x(), dorsal_centre, 0.2);
 }
 
 // A cuneiform tablet, turned: the obverse its flatter face (the reverse bulges), its long axis up
