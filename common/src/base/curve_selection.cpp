@@ -104,54 +104,52 @@ bool bridge_follows_line(const Vec3& a, const Vec3& b, const Vec3& d, double cos
   return forward >= -jog && (d - forward * along).norm() <= jog;
 }
 
-}  // namespace
+// An end of an open chain: its point, its chain and the outward direction near it.
+struct ChainEnd {
+  int point, chain;
+  Vec3 out;
+};
 
-int link_gaps(Polylines& c, double max_gap, double max_turn) {
-  if (!(max_gap > 0) || c.segments.empty()) return 0;
-  const int np = static_cast<int>(c.points.size());
-  std::vector<int> deg(np, 0), seg_of(np, -1);
-  for (int k = 0; k < static_cast<int>(c.segments.size()); ++k)
-    for (int e : c.segments[k]) ++deg[e], seg_of[e] = k;
-  // Ends of open chains: their chain, its length, and the outward direction near the end.
-  struct End {
-    int point, chain;
-    Vec3 out;
-  };
-  std::vector<End> ends;
-  std::vector<double> chain_length;
+// The ends of the open chains (points with one segment), each direction taken over the last
+// `max_gap` of its chain; and every chain's length.
+std::vector<ChainEnd> chain_ends(const Polylines& c, const std::vector<int>& degree, double max_gap,
+                                 std::vector<double>& chain_length) {
+  std::vector<ChainEnd> ends;
   const auto chains = c.chains();
   for (int ci = 0; ci < static_cast<int>(chains.size()); ++ci) {
     const auto& ch = chains[ci];
-    double L = 0;
-    for (size_t i = 1; i < ch.size(); ++i) L += (c.points[ch[i]] - c.points[ch[i - 1]]).norm();
-    chain_length.push_back(L);
+    double length = 0;
+    for (size_t i = 1; i < ch.size(); ++i) length += (c.points[ch[i]] - c.points[ch[i - 1]]).norm();
+    chain_length.push_back(length);
     if (ch.size() < 2 || ch.front() == ch.back()) continue;
+    const int n = static_cast<int>(ch.size());
     for (int side = 0; side < 2; ++side) {
-      const int n = static_cast<int>(ch.size());
       const int p = side == 0 ? ch.front() : ch.back();
-      if (deg[p] != 1) continue;
-      // Walk back along the chain up to max_gap for a stable direction.
-      Vec3 tip = c.points[p], back = tip;
+      if (degree[p] != 1) continue;
+      Vec3 back = c.points[p];
       double walked = 0;
       for (int i = 1; i < n && walked < max_gap; ++i) {
         const Vec3& q = c.points[side == 0 ? ch[i] : ch[n - 1 - i]];
         walked += (q - back).norm();
         back = q;
       }
-      Vec3 out = tip - back;
+      const Vec3 out = c.points[p] - back;
       if (out.norm() > 0) ends.push_back({p, ci, out.normalized()});
     }
   }
-  if (ends.size() < 2) return 0;
-  // Candidate pairs through a grid of cell max_gap.
+  return ends;
+}
+
+// The pairs of ends a bridge may join (distance, i, j with i < j), through a grid of cell max_gap.
+std::vector<std::tuple<double, int, int>> bridge_candidates(const Polylines& c, const std::vector<ChainEnd>& ends,
+                                                            const std::vector<double>& chain_length, double max_gap,
+                                                            double max_turn) {
   // Cell indices clamped: a coordinate 1e30 times the gap must not overflow the integer (fuzzer).
   auto index = [max_gap](double v) {
     const double q = std::floor(v / max_gap);
     return static_cast<long long>(q == q ? std::clamp(q, -1e15, 1e15) : 0.0);
   };
-  auto cell = [&index](const Vec3& x) {
-    return std::array<long long, 3>{index(x.x()), index(x.y()), index(x.z())};
-  };
+  auto cell = [&index](const Vec3& x) { return std::array<long long, 3>{index(x.x()), index(x.y()), index(x.z())}; };
   std::vector<std::pair<std::array<long long, 3>, int>> grid;
   for (int i = 0; i < static_cast<int>(ends.size()); ++i) grid.push_back({cell(c.points[ends[i].point]), i});
   std::sort(grid.begin(), grid.end());
@@ -164,21 +162,33 @@ int link_gaps(Polylines& c, double max_gap, double max_turn) {
       for (long long dy = -1; dy <= 1; ++dy)
         for (long long dz = -1; dz <= 1; ++dz) {
           const std::array<long long, 3> key{ci[0] + dx, ci[1] + dy, ci[2] + dz};
-          auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(key, -1));
-          for (; it != grid.end() && it->first == key; ++it) {
+          for (auto it = std::lower_bound(grid.begin(), grid.end(), std::make_pair(key, -1)); it != grid.end() && it->first == key; ++it) {
             const int j = it->second;
-            if (j <= i) continue;
             const Vec3 d = c.points[ends[j].point] - pi;
-            const double dist = d.norm();
-            if (!(dist <= max_gap)) continue;
+            if (j <= i || !(d.norm() <= max_gap)) continue;
             if (ends[i].chain == ends[j].chain && chain_length[ends[i].chain] <= 4 * max_gap) continue;
             if (ends[i].out.dot(-ends[j].out) < cos_turn) continue;  // the two ends must face each other
             if (!bridge_follows_line(ends[i].out, ends[j].out, d, cos_turn, kJogShare * max_gap)) continue;
-            pairs.emplace_back(dist, i, j);
+            pairs.emplace_back(d.norm(), i, j);
           }
         }
   }
-  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+}  // namespace
+
+int link_gaps(Polylines& c, double max_gap, double max_turn) {
+  if (!(max_gap > 0) || c.segments.empty()) return 0;
+  const int np = static_cast<int>(c.points.size());
+  std::vector<int> degree(np, 0), seg_of(np, -1);
+  for (int k = 0; k < static_cast<int>(c.segments.size()); ++k)
+    for (int e : c.segments[k]) ++degree[e], seg_of[e] = k;
+  std::vector<double> chain_length;
+  const std::vector<ChainEnd> ends = chain_ends(c, degree, max_gap, chain_length);
+  if (ends.size() < 2) return 0;
+  std::vector<std::tuple<double, int, int>> pairs = bridge_candidates(c, ends, chain_length, max_gap, max_turn);
+  std::sort(pairs.begin(), pairs.end());  // nearest first, each end at most once
   std::vector<char> used(ends.size(), 0);
   int links = 0;
   for (const auto& [dist, i, j] : pairs) {
