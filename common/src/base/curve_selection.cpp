@@ -348,8 +348,14 @@ Polylines select_lines(const Polylines& all, double threshold, const LineLinking
     strong[k] = s * w >= threshold;
     weak[k] = s >= linking.weak_ratio * threshold;
   }
-  Polylines kept = linking.weak_ratio < 1 ? hysteresis(all, strong, weak) : select_segments(all, strong);
-  if (linking.gap_edges > 0) link_gaps(kept, linking.gap_edges * edge, kLinkTurn);
+  return connect_lines(all, strong, weak, linking.gap_edges * edge, min_length);
+}
+
+Polylines connect_lines(const Polylines& all, const std::vector<char>& strong, const std::vector<char>& weak,
+                        double max_gap, double min_length, int* links) {
+  Polylines kept = hysteresis(all, strong, weak);
+  const int made = link_gaps(kept, max_gap, kLinkTurn);
+  if (links) *links = made;
   return drop_dashes(kept, min_length);
 }
 

@@ -279,9 +279,7 @@ void select_edges(const ReliefEdgeParams& p, const Polylines& all, const std::ve
     strong[k] = e <= p.strong_error && a >= std::max(r.strong_angle, nz);
     weak[k] = e <= p.weak_error && a >= std::max(r.weak_angle, 0.5 * nz);
   }
-  Polylines kept = hysteresis(all, strong, weak);
-  r.links = link_gaps(kept, p.link_gap_edges * r.scale.edge, kLinkTurn);
-  r.edges = drop_dashes(kept, r.min_length);
+  r.edges = connect_lines(all, strong, weak, p.link_gap_edges * r.scale.edge, r.min_length, &r.links);
 }
 
 // Per-vertex guidance must have one value per vertex (or none).

@@ -99,6 +99,12 @@ std::vector<int> curve_pieces(const Polylines& curves, std::vector<double>& leng
 /// segments joined through shared points, branches included (drop_short_chains cuts at branches).
 Polylines drop_dashes(const Polylines& curves, double min_length);
 
+/// The lines of `all` as every curve filter connects them: the `strong` segments with the `weak`
+/// ones joined to them (hysteresis), gaps up to `max_gap` bridged (link_gaps, kLinkTurn; the
+/// number of links in `links` when given), pieces shorter than `min_length` dropped (drop_dashes).
+Polylines connect_lines(const Polylines& all, const std::vector<char>& strong, const std::vector<char>& weak,
+                        double max_gap, double min_length, int* links = nullptr);
+
 /// Per vertex, how far `values` stands above its surroundings in units of their own spread:
 /// (x − m) / s, with m the values diffused to `radius` (mesh units) and s the absolute deviations
 /// |x − m| diffused to it. A crease on a smooth surface stands many spreads above its
